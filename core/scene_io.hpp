@@ -1,0 +1,52 @@
+// Scene, camera and path (de)serialisation: JSON for everything, OBJ export for viewing.
+//
+// Scene JSON (format "cullcheck-scene", version 1):
+//   {"format": "cullcheck-scene", "version": 1,
+//    "provenance": {"generator": "...", "seed": N, "parameters": {...}},
+//    "origin": [x, y],                      // optional, world offset of local coordinates
+//    "buildings": [{"id": N, "height": h, "footprint": [[x, y], ...]}, ...]}
+// Footprints are implicitly closed (a repeated closing vertex is dropped); clockwise rings are
+// reversed to counter-clockwise. Anything else wrong raises InputError naming building and field.
+// Writing is deterministic: the same scene gives byte-identical text.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "core/camera_path.hpp"
+#include "core/scene.hpp"
+
+namespace cullcheck {
+
+// Limits that make absurd input an error rather than an out-of-memory crash.
+inline constexpr std::size_t kMaxBuildings = 20'000'000;
+inline constexpr std::size_t kMaxFootprintVertices = 4096;
+inline constexpr double kMaxCoordinate = 1.0e9;   // metres, before rebasing
+inline constexpr double kMaxHeight = 1.0e4;       // metres
+// Scenes whose bounding box lies farther than this from the origin are rebased on load.
+inline constexpr double kRebaseThreshold = 1.0e5;
+
+Scene scene_from_json_text(const std::string& text);
+Scene read_scene_file(const std::string& path);
+std::string scene_to_json_text(const Scene& scene);
+void write_scene_file(const Scene& scene, const std::string& path);
+
+// Validates and normalises one building in place (orientation, closing vertex), then fills its
+// prisms and bounds. Used by the reader and by generators, so both obey the same rules.
+void validate_and_finish(Building& b);
+// Moves every coordinate so the scene's centre sits near (0, 0) when it is far from the origin.
+void rebase_if_far(Scene& scene);
+
+std::string camera_to_json_text(const Camera& camera);
+Camera camera_from_json_text(const std::string& text, const std::string& object = "camera");
+std::string path_to_json_text(const CameraPath& path);
+CameraPath path_from_json_text(const std::string& text);
+
+void write_obj(const Scene& scene, std::ostream& out);
+
+// Whole-file helpers that raise InputError naming the file when it cannot be read or written;
+// writes go to a temporary file that is renamed, so a failure never truncates existing output.
+std::string read_text_file(const std::string& path);
+void write_text_file_atomically(const std::string& path, const std::string& text);
+
+}  // namespace cullcheck

@@ -1,0 +1,57 @@
+// Full object-space occlusion horizon culling, OH(OS) (thesis ch. 3.1.2).
+//
+// Claim (as published): conservative from a point, 6 DoF, up to 360 degrees.
+//
+// Per query: the horizon starts empty except outside the view volume's azimuth coverage; the
+// quadtree is traversed front to back (best-first on the cells' and buildings' nearest plan
+// distance); a cell or building is culled when it lies outside the view volume or its highest
+// slope over its azimuth span is below min H there. A building that survives is in the PVS and
+// its CVPs' shadows are merged into H. A shadow is merged only once the sweep has passed the
+// CVP's farthest point (Downs et al.'s rule, "update OH at its maximum distance"), so whatever
+// is tested against H lies wholly behind every shadow in H.
+//
+// The shadow of a CVP is one elevation over its azimuth span (ch. 3.1.2, Fig. 3.4). Which
+// elevation is the variant:
+//  - ShadowRule::thesis — as published: the smaller elevation of the two extreme-azimuth
+//    (tangent) vertices' tops.
+//  - ShadowRule::conservative — the lowest elevation of the prism's silhouette over the span.
+//    For a roof at or above the eye the silhouette is the near chain's top, whose farthest point
+//    is a tangent vertex, so this equals the thesis value. For a roof below the eye the
+//    silhouette is the far chain's top; its nearest point can lie between the tangents (a wide
+//    low roof seen from above), where the thesis value is too high and hides what shows above
+//    the roof's far edge. Here the bound uses the distance to the far chain instead.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/method.hpp"
+#include "engine/spatial/quadtree.hpp"
+
+namespace cullcheck {
+
+enum class ShadowRule { thesis, conservative };
+
+class ObjectSpaceHorizonCulling final : public CullingMethod {
+ public:
+  ObjectSpaceHorizonCulling(const Scene& scene, ShadowRule rule, const MethodOptions& options = {});
+  std::string name() const override;
+  bool claims_conservative() const override { return true; }
+  CullResult cull(const Camera& camera) override;
+
+  // The horizon as left by the last query (for invariants, reports and the ΔH method).
+  OcclusionHorizon& horizon() { return horizon_; }
+  const Quadtree& quadtree() const { return quadtree_; }
+  // Slope of a CVP's shadow under this method's rule; nullopt when the CVP cannot occlude
+  // (the eye is inside it or on it).
+  std::optional<double> shadow_slope(const ConvexVerticalPrism& prism, Vec3 eye) const;
+
+ private:
+  const Scene& scene_;
+  ShadowRule rule_;
+  Quadtree quadtree_;
+  OcclusionHorizon horizon_;
+};
+
+}  // namespace cullcheck

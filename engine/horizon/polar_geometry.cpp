@@ -1,0 +1,111 @@
+#include "engine/horizon/polar_geometry.hpp"
+
+#include <cmath>
+
+namespace cullcheck {
+namespace {
+
+double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  double t = len2 > 0 ? dot(p - a, ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return length(p - (a + ab * t));
+}
+
+// Spans this close to half a turn come from an eye practically on the polygon.
+constexpr double kMaxSpan = kPi - 1e-9;
+
+}  // namespace
+
+std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
+  const std::size_t n = ring.size();
+  bool outside = false;
+  for (std::size_t i = 0; i < n && !outside; ++i) outside = cross(ring[(i + 1) % n] - ring[i], eye - ring[i]) < 0.0;
+  if (!outside) return std::nullopt;
+  // Angles relative to the first vertex's: a convex polygon seen from outside spans less than
+  // half a turn, so the extreme deltas in (-π, π] are its tangent vertices.
+  const double reference = std::atan2(ring[0].y - eye.y, ring[0].x - eye.x);
+  double lo = 0.0, hi = 0.0;
+  std::size_t lo_index = 0, hi_index = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const Vec2 d = ring[i] - eye;
+    if (d.x == 0.0 && d.y == 0.0) return std::nullopt;
+    const double delta = std::remainder(std::atan2(d.y, d.x) - reference, kTwoPi);
+    if (delta < lo) lo = delta, lo_index = i;
+    if (delta > hi) hi = delta, hi_index = i;
+  }
+  if (hi - lo >= kMaxSpan) return std::nullopt;
+  double begin = reference + lo;
+  begin = begin < 0.0 ? begin + kTwoPi : (begin >= kTwoPi ? begin - kTwoPi : begin);
+  return ConvexSpan{{begin, begin + (hi - lo)}, lo_index, hi_index};
+}
+
+std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye) {
+  return convex_span({box.lo, {box.hi.x, box.lo.y}, box.hi, {box.lo.x, box.hi.y}}, eye);
+}
+
+double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye) {
+  double d = 0.0;
+  for (Vec2 p : ring) d = std::max(d, length(p - eye));
+  return d;
+}
+
+double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye) {
+  double d = HUGE_VAL;
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i) d = std::min(d, point_segment_distance(eye, ring[i], ring[(i + 1) % n]));
+  return d;
+}
+
+double min_far_chain_distance(const std::vector<Vec2>& ring, Vec2 eye) {
+  double d = HUGE_VAL;
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+    const Vec2 a = ring[i], b = ring[(i + 1) % n];
+    // Counter-clockwise ring: the eye on the inner side of an edge's line (or on it) means the
+    // edge faces away from the eye.
+    if (cross(b - a, eye - a) >= 0.0) d = std::min(d, point_segment_distance(eye, a, b));
+  }
+  return d;
+}
+
+}  // namespace cullcheck
+
+#include "core/camera.hpp"
+
+namespace cullcheck {
+
+AzimuthSpan azimuth_coverage(const Camera& camera) {
+  const AzimuthSpan full{0.0, kTwoPi};
+  if (camera.omnidirectional()) return full;
+  const CameraBasis b = basis_of(camera);
+  const double th = std::tan(camera.hfov / 2), tv = std::tan(camera.vfov / 2);
+  // A vertical direction inside (or on) the pyramid: its plane tests, as in ViewVolume.
+  const double sh = std::sin(camera.hfov / 2), ch = std::cos(camera.hfov / 2);
+  const double sv = std::sin(camera.vfov / 2), cv = std::cos(camera.vfov / 2);
+  const Vec3 side_normals[4] = {b.forward * sh - b.right * ch, b.forward * sh + b.right * ch,
+                                b.forward * sv - b.up * cv, b.forward * sv + b.up * cv};
+  for (double vertical : {1.0, -1.0}) {
+    bool inside = true;
+    for (const Vec3& n : side_normals) inside = inside && n.z * vertical >= -1e-12;
+    if (inside) return full;
+  }
+  std::vector<Vec2> corners;
+  for (double x : {-th, th})
+    for (double y : {-tv, tv}) {
+      const Vec3 d = b.forward + b.right * x + b.up * y;
+      if (std::hypot(d.x, d.y) < 1e-12) return full;
+      corners.push_back({d.x, d.y});
+    }
+  const double reference = std::atan2(corners[0].y, corners[0].x);
+  double lo = 0.0, hi = 0.0;
+  for (Vec2 d : corners) {
+    const double delta = std::remainder(std::atan2(d.y, d.x) - reference, kTwoPi);
+    lo = std::min(lo, delta), hi = std::max(hi, delta);
+  }
+  if (hi - lo >= kPi - 1e-9) return full;
+  double begin = reference + lo;
+  begin = begin < 0.0 ? begin + kTwoPi : (begin >= kTwoPi ? begin - kTwoPi : begin);
+  return {begin, begin + (hi - lo)};
+}
+
+}  // namespace cullcheck

@@ -1,0 +1,91 @@
+#include "engine/spatial/quadtree.hpp"
+
+#include <algorithm>
+
+namespace cullcheck {
+
+Quadtree::Quadtree(const Scene& scene, std::uint32_t leaf_size, std::uint32_t max_depth) {
+  const std::size_t n = scene.buildings.size();
+  order_.resize(n);
+  centres_.resize(n);
+  Box2 square;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    order_[i] = i;
+    centres_[i] = scene.buildings[i].bounds.plan().center();
+    square.extend(centres_[i]);
+  }
+  if (n == 0) square = {{0, 0}, {0, 0}};
+  const double side = std::max(square.hi.x - square.lo.x, square.hi.y - square.lo.y);
+  square.hi = square.lo + Vec2{side, side};
+  cells_.push_back({});
+  cells_[0].first = 0;
+  cells_[0].last = static_cast<std::uint32_t>(n);
+  build(0, square, 0, scene, std::max(1u, leaf_size), max_depth);
+  centres_.clear();
+  centres_.shrink_to_fit();
+}
+
+void Quadtree::build(std::uint32_t cell, Box2 square, std::uint32_t depth, const Scene& scene, std::uint32_t leaf_size,
+                     std::uint32_t max_depth) {
+  const std::uint32_t first = cells_[cell].first, last = cells_[cell].last;
+  for (std::uint32_t i = first; i < last; ++i) {
+    const Building& b = scene.buildings[order_[i]];
+    cells_[cell].bounds.extend(b.bounds.plan());
+    cells_[cell].max_height = std::max(cells_[cell].max_height, b.height);
+  }
+  if (last - first <= leaf_size || depth >= max_depth) return;
+  // Split the building range into the four quadrants by centre; a stable partition keeps the
+  // order (and so every traversal) deterministic.
+  const Vec2 mid = square.center();
+  auto begin = order_.begin() + first, end = order_.begin() + last;
+  auto west = [&](std::uint32_t i) { return centres_[i].x < mid.x; };
+  auto south = [&](std::uint32_t i) { return centres_[i].y < mid.y; };
+  auto split_x = std::stable_partition(begin, end, west);
+  auto split_sw = std::stable_partition(begin, split_x, south);
+  auto split_se = std::stable_partition(split_x, end, south);
+  const std::uint32_t bounds[5] = {first, static_cast<std::uint32_t>(split_sw - order_.begin()),
+                                   static_cast<std::uint32_t>(split_x - order_.begin()),
+                                   static_cast<std::uint32_t>(split_se - order_.begin()), last};
+  const Box2 squares[4] = {{square.lo, mid},
+                           {{square.lo.x, mid.y}, {mid.x, square.hi.y}},
+                           {{mid.x, square.lo.y}, {square.hi.x, mid.y}},
+                           {mid, square.hi}};
+  // Quadrant order above: SW, NW, SE, NE (west half first, then south within each half).
+  const std::uint32_t child = static_cast<std::uint32_t>(cells_.size());
+  cells_[cell].first_child = child;
+  for (int q = 0; q < 4; ++q) {
+    Cell c;
+    c.first = bounds[q];
+    c.last = bounds[q + 1];
+    cells_.push_back(c);
+  }
+  for (int q = 0; q < 4; ++q) build(child + q, squares[q], depth + 1, scene, leaf_size, max_depth);
+}
+
+std::string Quadtree::check_invariants(const Scene& scene) const {
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    const Cell& cell = cells_[c];
+    for (std::uint32_t i = cell.first; i < cell.last; ++i) {
+      const Building& b = scene.buildings[order_[i]];
+      const Box2 box = b.bounds.plan();
+      if (!cell.bounds.contains(box.lo) || !cell.bounds.contains(box.hi))
+        return "cell " + std::to_string(c) + " does not enclose building " + std::to_string(b.id);
+      if (b.height > cell.max_height)
+        return "cell " + std::to_string(c) + " max height is below building " + std::to_string(b.id);
+    }
+    if (!cell.leaf()) {
+      if (cells_[cell.first_child].first != cell.first || cells_[cell.first_child + 3].last != cell.last)
+        return "cell " + std::to_string(c) + " children do not cover its building range";
+      for (int q = 0; q < 3; ++q)
+        if (cells_[cell.first_child + q].last != cells_[cell.first_child + q + 1].first)
+          return "cell " + std::to_string(c) + " children ranges are not contiguous";
+    }
+  }
+  std::vector<std::uint32_t> sorted = order_;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::uint32_t i = 0; i < sorted.size(); ++i)
+    if (sorted[i] != i) return "building order is not a permutation";
+  return {};
+}
+
+}  // namespace cullcheck

@@ -1,0 +1,43 @@
+// 2D quadtree over the plan view (thesis ch. 3.1.1): each cell keeps the maximum building
+// height inside it or its descendants, so a whole cell can be culled at once.
+//
+// A building is stored in the leaf that contains its footprint's bounding-box centre; each
+// cell's `bounds` is the union of its buildings' footprint boxes (tight, not the square cell),
+// so every cell test is conservative for everything below it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace cullcheck {
+
+class Quadtree {
+ public:
+  struct Cell {
+    Box2 bounds;              // tight plan-view bounds of the buildings below
+    double max_height = 0.0;  // highest building below
+    std::uint32_t first_child = 0;  // children are first_child .. first_child + 3; 0 for a leaf
+    std::uint32_t first = 0, last = 0;  // building range [first, last) in buildings()
+    bool leaf() const { return first_child == 0; }
+  };
+
+  Quadtree(const Scene& scene, std::uint32_t leaf_size = 8, std::uint32_t max_depth = 24);
+
+  const std::vector<Cell>& cells() const { return cells_; }  // cells()[0] is the root
+  // Scene building indices, ordered so that each cell's buildings are contiguous.
+  const std::vector<std::uint32_t>& buildings() const { return order_; }
+  // Structure invariant: bounds and max heights enclose every building below, ranges nest.
+  std::string check_invariants(const Scene& scene) const;
+
+ private:
+  void build(std::uint32_t cell, Box2 square, std::uint32_t depth, const Scene& scene, std::uint32_t leaf_size,
+             std::uint32_t max_depth);
+  std::vector<Cell> cells_;
+  std::vector<std::uint32_t> order_;
+  std::vector<Vec2> centres_;
+};
+
+}  // namespace cullcheck

@@ -1,0 +1,143 @@
+// Structure invariants of the occlusion horizon tree and the quadtree (design: "Structure
+// invariants"): the segment tree agrees with a plain array of bins under random raises and
+// queries, including spans that wrap at 0 / 2π, and its min/max invariant holds throughout.
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <limits>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/scene_io.hpp"
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/horizon/polar_geometry.hpp"
+#include "engine/spatial/quadtree.hpp"
+
+namespace cullcheck {
+namespace {
+
+// The plain model: one value per bin; a raise covers bins wholly inside the span, a query
+// reads every bin the span touches.
+struct BinModel {
+  std::uint32_t bins;
+  std::vector<double> value;
+  explicit BinModel(std::uint32_t n) : bins(n), value(n, -std::numeric_limits<double>::infinity()) {}
+  double width() const { return kTwoPi / bins; }
+  bool inside(std::uint32_t b, const AzimuthSpan& s) const {
+    if (s.full_circle()) return true;
+    for (double shift : {0.0, kTwoPi}) {
+      const double lo = b * width() + shift, hi = (b + 1) * width() + shift;
+      if (lo >= s.begin + kAngularSlack && hi <= s.end - kAngularSlack) return true;
+    }
+    return false;
+  }
+  bool touches(std::uint32_t b, const AzimuthSpan& s) const {
+    if (s.full_circle()) return true;
+    for (double shift : {-kTwoPi, 0.0, kTwoPi}) {
+      const double lo = b * width() + shift, hi = (b + 1) * width() + shift;
+      if (hi >= s.begin - kAngularSlack && lo <= s.end + kAngularSlack) return true;
+    }
+    return false;
+  }
+};
+
+AzimuthSpan span_from(double begin_fraction, double length_fraction) {
+  const double begin = begin_fraction * kTwoPi;
+  return {begin, begin + length_fraction * kTwoPi};
+}
+
+RC_GTEST_PROP(OcclusionHorizon, AgreesWithPlainBinsAndKeepsInvariants, ()) {
+  const std::uint32_t bins = 1u << *rc::gen::inRange(1, 8);
+  OcclusionHorizon horizon(bins);
+  BinModel model(bins);
+  const int steps = *rc::gen::inRange(1, 40);
+  for (int step = 0; step < steps; ++step) {
+    const double begin = *rc::gen::inRange(0, 1000) / 1000.0;
+    const double length = *rc::gen::inRange(0, 1001) / 1000.0;
+    const AzimuthSpan span = span_from(begin, length);
+    if (*rc::gen::arbitrary<bool>()) {
+      const double slope = *rc::gen::inRange(-100, 100) / 10.0;
+      horizon.raise(span, slope);
+      for (std::uint32_t b = 0; b < bins; ++b)
+        if (model.inside(b, span)) model.value[b] = std::max(model.value[b], slope);
+    } else {
+      double expected = std::numeric_limits<double>::infinity();
+      for (std::uint32_t b = 0; b < bins; ++b)
+        if (model.touches(b, span)) expected = std::min(expected, model.value[b]);
+      RC_ASSERT(horizon.min_over(span) == expected);
+    }
+    RC_ASSERT(horizon.check_invariants() == "");
+  }
+  for (std::uint32_t b = 0; b < bins; ++b) RC_ASSERT(horizon.bin_value(b) == model.value[b]);
+}
+
+TEST(OcclusionHorizon, WrapAroundEastIsOneInterval) {
+  OcclusionHorizon horizon(16);
+  // A shadow from 350° to 20° raises the bins on both sides of east and nothing else.
+  horizon.raise({350.0 * kPi / 180, 380.0 * kPi / 180}, 1.0);
+  // Neither [337.5°, 360°) nor [0, 22.5°) lies wholly inside: both stay low.
+  EXPECT_EQ(horizon.bin_value(15), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(horizon.bin_value(0), -std::numeric_limits<double>::infinity());
+  horizon.raise({330.0 * kPi / 180, 400.0 * kPi / 180}, 2.0);
+  EXPECT_EQ(horizon.bin_value(15), 2.0);
+  EXPECT_EQ(horizon.bin_value(0), 2.0);
+  EXPECT_EQ(horizon.bin_value(1), -std::numeric_limits<double>::infinity());
+  // A test span touching azimuth exactly 0 reads the last bin too.
+  EXPECT_EQ(horizon.min_over({0.0, 0.0}), 2.0);
+  EXPECT_TRUE(horizon.check_invariants().empty());
+}
+
+TEST(OcclusionHorizon, RestrictHidesOnlyBinsOutsideCoverage) {
+  OcclusionHorizon horizon(8);
+  horizon.restrict_to({kPi / 2, kPi});  // bins 2 and 3 are the coverage
+  EXPECT_EQ(horizon.bin_value(2), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(horizon.bin_value(3), -std::numeric_limits<double>::infinity());
+  // Bins 1 and 4 touch the coverage at a boundary: slack keeps them open.
+  EXPECT_EQ(horizon.bin_value(1), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(horizon.bin_value(4), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(horizon.bin_value(0), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(horizon.bin_value(6), std::numeric_limits<double>::infinity());
+}
+
+TEST(PolarGeometry, SpanAcrossEastAndTangents) {
+  const std::vector<Vec2> square{{10, -1}, {12, -1}, {12, 1}, {10, 1}};
+  const auto s = convex_span(square, {0, 0});
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(s->span.begin, kTwoPi - std::atan2(1.0, 10.0), 1e-12);
+  EXPECT_NEAR(s->span.end - s->span.begin, 2 * std::atan2(1.0, 10.0), 1e-12);
+  EXPECT_EQ(s->first_tangent, 0u);
+  EXPECT_EQ(s->last_tangent, 3u);
+  EXPECT_FALSE(convex_span(square, {11, 0}));  // eye inside
+  EXPECT_FALSE(convex_span(square, {10, 0}));  // eye on a wall
+  // The far chain runs from tangent to tangent behind the front wall; its nearest points are
+  // the tangent vertices themselves.
+  EXPECT_NEAR(min_far_chain_distance(square, {0, 0}), std::hypot(10.0, 1.0), 1e-12);
+  // A wide, shallow slab: the back wall's middle is nearer than either tangent vertex.
+  const std::vector<Vec2> slab{{20, -20}, {21, -20}, {21, 20}, {20, 20}};
+  EXPECT_NEAR(min_far_chain_distance(slab, {0, 0}), 21.0, 1e-12);
+}
+
+TEST(Quadtree, InvariantsHoldOnAGrid) {
+  Scene scene;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j) {
+      Building b;
+      b.id = static_cast<ObjectId>(i * 30 + j);
+      b.height = 5.0 + (i * 7 + j * 3) % 20;
+      const double x = i * 20.0, y = j * 20.0;
+      b.footprint = {{x, y}, {x + 8 + (j % 3), y}, {x + 8 + (j % 3), y + 10}, {x, y + 10}};
+      validate_and_finish(b);
+      scene.buildings.push_back(b);
+    }
+  for (std::uint32_t leaf : {1u, 4u, 8u, 64u}) {
+    const Quadtree tree(scene, leaf);
+    EXPECT_EQ(tree.check_invariants(scene), "") << "leaf size " << leaf;
+    for (const auto& cell : tree.cells())
+      if (cell.leaf()) {
+        EXPECT_LE(cell.last - cell.first, leaf);
+      }
+  }
+}
+
+}  // namespace
+}  // namespace cullcheck
