@@ -1,0 +1,251 @@
+// cullcheck: the command-line program. Thin: it parses flags and calls the libraries.
+//
+// Exit codes: 0 success; 1 a method that claims to be conservative culled something the oracle
+// saw (the CI gate); 2 bad input (one line on stderr naming the object and field).
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+#include "core/scene_io.hpp"
+#include "engine/method.hpp"
+#include "generators/camera_paths.hpp"
+#include "generators/city.hpp"
+#include "oracle/oracle.hpp"
+#include "reports/claims.hpp"
+#include "reports/report.hpp"
+#include "reports/verification.hpp"
+
+namespace cc = cullcheck;
+
+namespace {
+
+constexpr int kExitGateFailed = 1;
+constexpr int kExitBadInput = 2;
+
+struct SceneFlags {
+  cc::SceneSource source;
+  void add(CLI::App& app) {
+    app.add_option("--generator", source.generator, "City generator (manhattan, plaza, default, scatter, irregular, thesis)")
+        ->capture_default_str();
+    app.add_option("--seed", source.seed, "Generator seed")->capture_default_str();
+    app.add_option("--params", source.parameters_json, "Generator parameters as JSON, overlaid on its defaults")
+        ->capture_default_str();
+    app.add_option("--scene", source.file, "Read the scene from this JSON file instead of generating it");
+  }
+};
+
+struct PathFlags {
+  std::string kind = "street_walk";
+  std::uint64_t seed = 1;
+  std::string params = "{}";
+  std::string file;
+  void add(CLI::App& app, int default_frames) {
+    params = nlohmann::json{{"frames", default_frames}}.dump();
+    app.add_option("--path-kind", kind, "Camera path generator (street_walk, fly_through)")->capture_default_str();
+    app.add_option("--path-seed", seed, "Camera path seed")->capture_default_str();
+    app.add_option("--path-params", params, "Camera path parameters as JSON")->capture_default_str();
+    app.add_option("--path", file, "Read the camera path from this JSON file instead");
+  }
+  cc::CameraPath load(const cc::Scene& scene) const {
+    if (!file.empty()) return cc::path_from_json_text(cc::read_text_file(file));
+    return cc::generators::make_camera_path(kind, scene, seed, parse_json(params, "path-params"));
+  }
+  static nlohmann::json parse_json(const std::string& text, const std::string& field) {
+    try {
+      return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw cc::InputError("command line", field, std::string("is not valid JSON: ") + e.what());
+    }
+  }
+};
+
+struct SamplingFlags {
+  cc::oracle::SamplingOptions sampling;
+  void add(CLI::App& app) {
+    app.add_option("--spacing", sampling.spacing_m, "Oracle: surface sample spacing in metres")->capture_default_str();
+    app.add_option("--face-grid", sampling.face_grid, "Oracle: least grid intervals per face")->capture_default_str();
+    app.add_option("--frustum-resolution", sampling.frustum_resolution, "Oracle: stratified rays per image row")
+        ->capture_default_str();
+  }
+};
+
+std::vector<std::string> parse_methods(const std::string& list) {
+  if (list == "all") return cc::method_names();
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = list.find(',', start);
+    out.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  for (const auto& m : out) {
+    const auto names = cc::method_names();
+    if (std::find(names.begin(), names.end(), m) == names.end()) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw cc::InputError("command line", "method", "unknown method '" + m + "' (known: " + known + ", all)");
+    }
+  }
+  return out;
+}
+
+nlohmann::json pvs_json(const cc::CullResult& r) {
+  return {{"pvs", r.pvs},
+          {"pvs_size", r.pvs.size()},
+          {"cells_tested", r.stats.cells_tested},
+          {"buildings_tested", r.stats.buildings_tested},
+          {"horizon_nodes", r.stats.horizon_nodes},
+          {"occluders_applied", r.stats.occluders_applied},
+          {"cull_ms", r.stats.cull_ms}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cullcheck: urban occlusion culling held to an oracle (Embree + CGAL) on seeded cities"};
+  app.require_subcommand(1);
+
+  // generate ---------------------------------------------------------------------------------
+  CLI::App* generate = app.add_subcommand("generate", "Generate a city (JSON, optionally OBJ) and optionally a camera path");
+  SceneFlags gen_scene;
+  gen_scene.add(*generate);
+  std::string gen_output = "scene.json", gen_obj, gen_path_output;
+  PathFlags gen_path;
+  gen_path.add(*generate, 300);
+  generate->add_option("--output,-o", gen_output, "Scene JSON file to write")->capture_default_str();
+  generate->add_option("--obj", gen_obj, "Also write the scene as Wavefront OBJ");
+  generate->add_option("--path-output", gen_path_output, "Also write a camera path (see --path-kind) to this file");
+
+  // cull -------------------------------------------------------------------------------------
+  CLI::App* cull = app.add_subcommand("cull", "Run one engine method for a camera and print its PVS as JSON");
+  SceneFlags cull_scene;
+  cull_scene.add(*cull);
+  std::string cull_method = "oh_os_conservative", cull_camera;
+  cull->add_option("--method", cull_method, "Engine method")->capture_default_str();
+  cull->add_option("--camera", cull_camera, "Camera as JSON (scene-local coordinates)")->required();
+
+  // verify -----------------------------------------------------------------------------------
+  CLI::App* verify = app.add_subcommand("verify", "Hold methods to the oracle for one camera or a path; exit 1 on a violation");
+  SceneFlags verify_scene;
+  verify_scene.add(*verify);
+  std::string verify_methods = "all", verify_camera;
+  PathFlags verify_path;
+  verify_path.add(*verify, 60);
+  SamplingFlags verify_sampling;
+  verify_sampling.add(*verify);
+  verify->add_option("--method", verify_methods, "Comma-separated methods, or 'all'")->capture_default_str();
+  verify->add_option("--camera", verify_camera, "One camera as JSON (instead of a path)");
+
+  // report -----------------------------------------------------------------------------------
+  CLI::App* report = app.add_subcommand("report", "The main job: every method and the oracle along a path, the claims ledger, report.json");
+  SceneFlags report_scene;
+  report_scene.add(*report);
+  PathFlags report_path;
+  report_path.add(*report, 300);
+  SamplingFlags report_sampling;
+  report_sampling.add(*report);
+  std::string report_methods = "all", report_output = "report.json";
+  std::size_t oracle_stride = 1;
+  cc::ClaimSearchOptions claim_options;
+  report->add_option("--method", report_methods, "Comma-separated methods, or 'all'")->capture_default_str();
+  report->add_option("--output,-o", report_output, "Report file to write")->capture_default_str();
+  report->add_option("--oracle-stride", oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
+  report->add_option("--claim-scenes", claim_options.scenes, "Scenes searched per claim")->capture_default_str();
+  report->add_option("--claim-seed", claim_options.seed, "Seed of the claim search")->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitBadInput;
+  }
+
+  try {
+    if (*generate) {
+      const cc::Scene scene = gen_scene.source.load();
+      cc::write_scene_file(scene, gen_output);
+      std::cout << "wrote " << gen_output << ": " << scene.buildings.size() << " buildings, " << scene.triangle_count()
+                << " triangles\n";
+      if (!gen_obj.empty()) {
+        std::ostringstream obj;
+        cc::write_obj(scene, obj);
+        cc::write_text_file_atomically(gen_obj, obj.str());
+        std::cout << "wrote " << gen_obj << "\n";
+      }
+      if (!gen_path_output.empty()) {
+        const cc::CameraPath path = gen_path.load(scene);
+        cc::write_text_file_atomically(gen_path_output, cc::path_to_json_text(path));
+        std::cout << "wrote " << gen_path_output << ": " << path.frames.size() << " frames\n";
+      }
+      return 0;
+    }
+    if (*cull) {
+      const cc::Scene scene = cull_scene.source.load();
+      const cc::Camera camera = cc::camera_from_json_text(cull_camera);
+      auto method = cc::make_method(cull_method, scene);
+      nlohmann::json out = pvs_json(method->cull(camera));
+      out["method"] = cull_method;
+      std::cout << out.dump() << "\n";
+      return 0;
+    }
+    if (*verify) {
+      const cc::Scene scene = verify_scene.source.load();
+      const std::vector<std::string> methods = parse_methods(verify_methods);
+      cc::CameraPath path;
+      if (!verify_camera.empty()) {
+        path.kind = "single_camera";
+        path.frames.push_back(cc::camera_from_json_text(verify_camera));
+      } else {
+        path = verify_path.load(scene);
+      }
+      cc::VerificationOptions options;
+      options.oracle.sampling = verify_sampling.sampling;
+      options.max_replays = 10;
+      const cc::PathVerification v = cc::verify_path(scene, verify_scene.source, path, methods, {}, options);
+      std::cout << cc::summary_table(v);
+      for (const cc::MethodRun& r : v.runs)
+        for (const cc::Violation& x : r.violations)
+          std::cout << "violation: " << r.method << " culled building " << x.building << " at frame " << x.frame << " (oracle "
+                    << x.model << (x.witness.empty() ? "" : ", witness " + x.witness) << ")\n  replay: " << x.replay << "\n";
+      return cc::conservative_violations(v) == 0 ? 0 : kExitGateFailed;
+    }
+    if (*report) {
+      const cc::Scene scene = report_scene.source.load();
+      const cc::CameraPath path = report_path.load(scene);
+      cc::VerificationOptions options;
+      options.oracle.sampling = report_sampling.sampling;
+      options.oracle_stride = oracle_stride;
+      const std::vector<std::string> methods = parse_methods(report_methods);
+      std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
+                << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
+      const cc::PathVerification v = cc::verify_path(scene, report_scene.source, path, methods, {}, options);
+      claim_options.sampling = report_sampling.sampling;
+      cc::ReportInputs in;
+      in.scene = &scene;
+      in.source = report_scene.source;
+      in.path = &path;
+      in.path_parameters_json = report_path.file.empty() ? report_path.params : "{}";
+      in.verification = &v;
+      in.claims = cc::check_shadow_elevation_rule(claim_options);
+      cc::write_text_file_atomically(report_output, cc::build_report(in).dump(2) + "\n");
+      std::cout << cc::summary_table(v);
+      for (const cc::ClaimCheck& c : in.claims) {
+        std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
+                  << c.violations << " violations)\n";
+        if (!c.holds) std::cout << "  counterexample: " << c.counterexample_replay << "\n";
+      }
+      std::cout << "wrote " << report_output << "\n";
+      return cc::conservative_violations(v) == 0 ? 0 : kExitGateFailed;
+    }
+  } catch (const cc::InputError& e) {
+    std::cerr << "cullcheck: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "cullcheck: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return 0;
+}

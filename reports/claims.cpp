@@ -1,0 +1,160 @@
+#include "reports/claims.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "engine/method.hpp"
+#include "generators/camera_paths.hpp"
+#include "generators/city.hpp"
+#include "generators/random.hpp"
+#include "oracle/oracle.hpp"
+#include "reports/scene_source.hpp"
+#include "reports/verification.hpp"
+
+namespace cullcheck {
+
+nlohmann::json to_json(const ClaimCheck& c) {
+  nlohmann::json j = {{"id", c.id},
+                      {"source", c.source},
+                      {"statement", c.statement},
+                      {"method", c.method},
+                      {"holds", c.holds},
+                      {"frames_checked", c.frames_checked},
+                      {"violations", c.violations},
+                      {"search_seconds", c.search_seconds}};
+  if (!c.holds) j["counterexample"] = {{"replay", c.counterexample_replay}, {"detail", c.counterexample_detail}};
+  return j;
+}
+
+namespace {
+
+// Small cities with occluders on both sides of eye height: thin slabs (wide, shallow roofs,
+// whose far wall is much nearer than their end corners), low buildings and kiosks below a
+// pedestrian's eye, some towers.
+SceneSource search_scene(std::uint64_t seed, int index) {
+  SceneSource s;
+  s.generator = index % 2 == 0 ? "manhattan" : "plaza";
+  s.seed = seed;
+  nlohmann::json p = {{"blocks_x", 3},         {"blocks_y", 3},        {"buildings_per_block", 4},
+                      {"thin_fraction", 0.5},  {"min_height", 3.0},    {"max_height", 20.0},
+                      {"tower_fraction", 0.05}, {"tower_min_height", 30.0}, {"tower_max_height", 60.0}};
+  if (s.generator == "plaza") p.update({{"plaza_blocks_x", 1}, {"plaza_blocks_y", 1}, {"kiosk_count", 8}});
+  s.parameters_json = p.dump();
+  return s;
+}
+
+// Cameras above the rooftops looking down, where roofs lie below the eye: seeded, uniform over
+// the scene's plan, between 1.1 and 2.5 times the tallest roof, pitched 20-80 degrees down.
+std::vector<Camera> rooftop_cameras(const Scene& scene, std::uint64_t seed, int count) {
+  generators::Random random = generators::Random::stream(seed, 0xC1A1);
+  const Box3 box = scene.bounds();
+  std::vector<Camera> cameras;
+  for (int i = 0; i < count; ++i) {
+    Camera c;
+    c.position = {random.uniform_real(box.lo.x, box.hi.x), random.uniform_real(box.lo.y, box.hi.y),
+                  box.hi.z * random.uniform_real(1.1, 2.5)};
+    c.yaw = random.uniform_real(0.0, kTwoPi);
+    c.pitch = -random.uniform_real(20.0, 80.0) * kPi / 180;
+    c.hfov = kPi / 3;
+    c.vfov = kPi / 4;
+    cameras.push_back(c);
+  }
+  return cameras;
+}
+
+bool inside_convex(const std::vector<Vec2>& ring, Vec2 p) {
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i)
+    if (cross(ring[(i + 1) % n] - ring[i], p - ring[i]) < 0.0) return false;
+  return true;
+}
+
+// Cameras a little above a building's roof, in front of its longest side and facing it: the
+// roof then spans a wide angle below the eye, where its far wall is nearer than its end corners
+// and the two shadow rules disagree most. The eye is lifted above any building it stands in.
+std::vector<Camera> near_roof_cameras(const Scene& scene, std::uint64_t seed, int count) {
+  generators::Random random = generators::Random::stream(seed, 0xC1A2);
+  std::vector<Camera> cameras;
+  for (int i = 0; i < count && !scene.buildings.empty(); ++i) {
+    const auto last = static_cast<std::int64_t>(scene.buildings.size()) - 1;
+    const Building& b = scene.buildings[static_cast<std::size_t>(random.uniform_int(0, last))];
+    const Box2 box = b.bounds.plan();
+    const Vec2 centre = box.center();
+    const double wx = box.hi.x - box.lo.x, wy = box.hi.y - box.lo.y;
+    const double side = random.bernoulli(0.5) ? 1.0 : -1.0;
+    const Vec2 away = wx > wy ? Vec2{0.0, side} : Vec2{side, 0.0};
+    const double distance = std::min(wx, wy) / 2 + random.uniform_real(1.0, 15.0);
+    Camera c;
+    c.position = {centre.x + away.x * distance, centre.y + away.y * distance, b.height + random.uniform_real(0.5, 10.0)};
+    for (const Building& other : scene.buildings)
+      for (const ConvexVerticalPrism& prism : other.prisms)
+        if (c.position.z <= prism.height && inside_convex(prism.ring, plan(c.position))) c.position.z = prism.height + 1.0;
+    c.yaw = azimuth_of(centre - plan(c.position));
+    c.pitch = -std::atan2(c.position.z, distance + 10.0);
+    c.hfov = kPi / 2;
+    c.vfov = kPi / 3;
+    cameras.push_back(c);
+  }
+  return cameras;
+}
+
+ClaimCheck claim(std::string id, std::string source, std::string statement, std::string method) {
+  ClaimCheck c;
+  c.id = std::move(id);
+  c.source = std::move(source);
+  c.statement = std::move(statement);
+  c.method = std::move(method);
+  return c;
+}
+
+}  // namespace
+
+std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  ClaimCheck published = claim("thesis-3.1.2-shadow-elevation-rule",
+                       "Koldas thesis, ch. 3.1.2 (object-space OH)",
+                       "A CVP's shadow may take as its elevation the smaller elevation of its two extreme-azimuth "
+                       "vertices, and OH(OS) with it stays conservative (6 DoF, up to 360 degrees).",
+                       "oh_os_thesis");
+  ClaimCheck corrected = claim("cullcheck-shadow-elevation-far-chain",
+                       "cullcheck correction of thesis ch. 3.1.2",
+                       "Taking the shadow's elevation from the far chain when the roof is below the eye (and from the "
+                       "tangent vertices otherwise) keeps OH(OS) conservative.",
+                       "oh_os_conservative");
+  oracle::OracleOptions oracle_options;
+  oracle_options.sampling = options.sampling;
+  MethodOptions method_options;
+  for (int index = 0; index < options.scenes; ++index) {
+    const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(index);
+    const SceneSource source = search_scene(seed, index);
+    const Scene scene = source.load();
+    std::vector<Camera> cameras = rooftop_cameras(scene, seed, options.cameras_per_scene);
+    for (const Camera& c : near_roof_cameras(scene, seed, 4 * options.cameras_per_scene)) cameras.push_back(c);
+    // Half as many again from a fly-through, which also dips to street level.
+    const CameraPath path = generators::make_camera_path("fly_through", scene, seed, {{"frames", 240}});
+    const std::size_t stride = std::max<std::size_t>(1, 2 * path.frames.size() / std::max(2, options.cameras_per_scene));
+    for (std::size_t f = 0; f < path.frames.size(); f += stride)
+      cameras.push_back(path.frames[f]);
+    auto thesis = make_method(published.method, scene, method_options);
+    auto conservative = make_method(corrected.method, scene, method_options);
+    const oracle::Oracle truth(scene);
+    for (const Camera& camera : cameras) {
+      const oracle::OracleAnswer answer = truth.visible_set(camera, oracle_options);
+      for (auto [claim, method] : {std::pair{&published, thesis.get()}, std::pair{&corrected, conservative.get()}}) {
+        ++claim->frames_checked;
+        const std::vector<ObjectId> missed = missing_from(answer.visible, method->cull(camera).pvs);
+        claim->violations += missed.size();
+        if (missed.empty() || !claim->holds) continue;
+        claim->holds = false;
+        claim->counterexample_replay = replay_command(source, claim->method, camera);
+        claim->counterexample_detail = "building " + std::to_string(missed.front()) + " seen by the oracle (" +
+                                       answer.model + ") but culled" +
+                                       (answer.sampling ? ": " + oracle::describe(answer.sampling->witnesses.at(missed.front())) : "");
+      }
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  published.search_seconds = corrected.search_seconds = seconds;
+  return {published, corrected};
+}
+
+}  // namespace cullcheck

@@ -1,0 +1,44 @@
+// The claims ledger (design: "Reports"): each paper claim checked so far, whether the oracle
+// confirms it, and for a refuted claim the replay command of a counterexample.
+//
+// Claims are checked by a deterministic, budgeted search over generated scenes and cameras
+// (seeded: the same budget and seed find the same counterexample on every machine).
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "oracle/sampling.hpp"
+
+namespace cullcheck {
+
+struct ClaimSearchOptions {
+  std::uint64_t seed = 1;
+  int scenes = 12;             // generated scenes searched
+  int cameras_per_scene = 16;  // rooftop cameras per scene; 4x as many near-roof ones, half as many fly-through frames
+  oracle::SamplingOptions sampling;
+};
+
+struct ClaimCheck {
+  std::string id;         // e.g. "thesis-3.1.2-shadow-elevation-rule"
+  std::string source;     // paper and section
+  std::string statement;  // the claim, in our words
+  std::string method;     // the engine method that embodies it
+  bool holds = true;
+  std::uint64_t frames_checked = 0;
+  std::uint64_t violations = 0;
+  std::string counterexample_replay;  // empty when the claim held
+  std::string counterexample_detail;
+  double search_seconds = 0.0;
+};
+
+nlohmann::json to_json(const ClaimCheck& claim);
+
+// The shadow-elevation rule of thesis ch. 3.1.2 (β_min from the two tangent vertices) against
+// the far-chain bound, over scenes with occluders below and above the eye (plazas with kiosks,
+// low and tall buildings) and cameras from street level to above the rooftops.
+std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& options);
+
+}  // namespace cullcheck

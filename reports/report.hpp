@@ -1,0 +1,38 @@
+// report.json (schema documented in README.md, "report.json"): one document per run with the
+// scene, the path, the oracle's model and density, one entry per method (speed and accuracy
+// side by side) and the claims ledger. Everything but the fields named *_ms*, *seconds* and
+// *per_second* (and "machine") is a function of the inputs: the same seed gives the same bytes.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/camera_path.hpp"
+#include "core/scene.hpp"
+#include "engine/method.hpp"
+#include "reports/claims.hpp"
+#include "reports/scene_source.hpp"
+#include "reports/verification.hpp"
+
+namespace cullcheck {
+
+inline constexpr int kReportSchemaVersion = 1;
+
+struct ReportInputs {
+  const Scene* scene = nullptr;
+  SceneSource source;
+  const CameraPath* path = nullptr;
+  std::string path_parameters_json = "{}";
+  MethodOptions method_options;
+  const PathVerification* verification = nullptr;
+  std::vector<ClaimCheck> claims;
+};
+
+nlohmann::json build_report(const ReportInputs& in);
+// The per-method table printed after a run.
+std::string summary_table(const PathVerification& v);
+// Total violations of methods that claim to be conservative (the CI gate's number).
+std::uint64_t conservative_violations(const PathVerification& v);
+
+}  // namespace cullcheck

@@ -1,0 +1,35 @@
+#include "reports/scene_source.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+#include "core/scene_io.hpp"
+#include "generators/city.hpp"
+
+namespace cullcheck {
+
+Scene SceneSource::load() const {
+  if (!file.empty()) return read_scene_file(file);
+  nlohmann::json params;
+  try {
+    params = nlohmann::json::parse(parameters_json);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("generator", "params", std::string("is not valid JSON: ") + e.what());
+  }
+  return generators::make_city(generator, seed, params);
+}
+
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+std::string SceneSource::replay_flags() const {
+  if (!file.empty()) return "--scene " + shell_quote(file);
+  std::string flags = "--generator " + generator + " --seed " + std::to_string(seed);
+  if (parameters_json != "{}" && !parameters_json.empty()) flags += " --params " + shell_quote(parameters_json);
+  return flags;
+}
+
+}  // namespace cullcheck

@@ -1,0 +1,89 @@
+#include "reports/verification.hpp"
+
+#include <algorithm>
+#include <iterator>
+
+#include "core/scene_io.hpp"
+
+namespace cullcheck {
+
+std::vector<ObjectId> missing_from(const std::vector<ObjectId>& visible, const std::vector<ObjectId>& pvs) {
+  std::vector<ObjectId> missing;
+  std::set_difference(visible.begin(), visible.end(), pvs.begin(), pvs.end(), std::back_inserter(missing));
+  return missing;
+}
+
+std::string replay_command(const SceneSource& source, const std::string& method, const Camera& camera) {
+  std::string camera_json = camera_to_json_text(camera);
+  if (!camera_json.empty() && camera_json.back() == '\n') camera_json.pop_back();
+  return "cullcheck verify " + source.replay_flags() + " --method " + method + " --camera " + shell_quote(camera_json);
+}
+
+PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,
+                             const std::vector<std::string>& methods, const MethodOptions& method_options,
+                             const VerificationOptions& options) {
+  PathVerification out;
+  out.oracle.density = options.oracle.sampling;
+  out.oracle.oracle_stride = std::max<std::size_t>(1, options.oracle_stride);
+  std::vector<std::unique_ptr<CullingMethod>> engines;
+  for (const std::string& name : methods) {
+    engines.push_back(make_method(name, scene, method_options));
+    MethodRun run;
+    run.method = name;
+    run.claims_conservative = engines.back()->claims_conservative();
+    out.runs.push_back(std::move(run));
+  }
+  const oracle::Oracle truth(scene);
+  oracle::RayLog first_log;
+  for (std::size_t frame = 0; frame < path.frames.size(); ++frame) {
+    const Camera& camera = path.frames[frame];
+    std::vector<CullResult> results;
+    for (std::size_t m = 0; m < engines.size(); ++m) {
+      results.push_back(engines[m]->cull(camera));
+      MethodRun& run = out.runs[m];
+      const CullStatistics& s = results.back().stats;
+      run.cull_ms.push_back(s.cull_ms);
+      run.pvs_size.push_back(static_cast<double>(results.back().pvs.size()));
+      run.totals.cells_tested += s.cells_tested;
+      run.totals.buildings_tested += s.buildings_tested;
+      run.totals.horizon_nodes += s.horizon_nodes;
+      run.totals.occluders_applied += s.occluders_applied;
+    }
+    if (frame % out.oracle.oracle_stride != 0) continue;
+    const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle);
+    ++out.oracle.frames_checked;
+    out.oracle.seconds += answer.elapsed_seconds;
+    if (answer.sampling) {
+      ++out.oracle.frames_ray_sampling;
+      out.oracle.rays_cast += answer.sampling->rays_cast;
+      out.oracle.sampling_seconds += answer.sampling->elapsed_seconds;
+      if (first_log.rays.empty()) truth.rays().witness(camera, options.oracle.sampling, &first_log);
+    } else {
+      ++out.oracle.frames_exact_2d;
+    }
+    for (std::size_t m = 0; m < engines.size(); ++m) {
+      MethodRun& run = out.runs[m];
+      run.checked_pvs_size.push_back(static_cast<double>(results[m].pvs.size()));
+      run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
+      const std::vector<ObjectId> missed = missing_from(answer.visible, results[m].pvs);
+      if (missed.empty()) continue;
+      run.violation_count += missed.size();
+      ++run.frames_with_violations;
+      for (ObjectId id : missed) {
+        if (run.violations.size() >= options.max_replays) break;
+        Violation v;
+        v.frame = frame;
+        v.building = id;
+        v.camera = camera;
+        v.model = answer.model;
+        if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
+        v.replay = replay_command(source, run.method, camera);
+        run.violations.push_back(std::move(v));
+      }
+    }
+  }
+  if (!first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth.rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
+  return out;
+}
+
+}  // namespace cullcheck
