@@ -56,7 +56,9 @@ struct Box2 {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
   }
-  void extend(const Box2& b) { extend(b.lo), extend(b.hi); }
+  void extend(const Box2& b) {
+    if (!b.empty()) extend(b.lo), extend(b.hi);  // an empty box's corners are +-inf
+  }
   bool empty() const { return lo.x > hi.x || lo.y > hi.y; }
   Vec2 center() const { return (lo + hi) * 0.5; }
   bool contains(Vec2 p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }

@@ -1,0 +1,78 @@
+// Generators by name, for the CLI and for replay commands (see city.hpp).
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+#include "generators/city.hpp"
+#include "generators/params_json.hpp"
+
+namespace cullcheck::generators {
+namespace {
+
+std::string joined_names() {
+  std::string s;
+  for (const std::string& n : city_generator_names()) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+[[noreturn]] void unknown_generator(const std::string& name) {
+  throw InputError("generator", "name", "unknown generator '" + name + "' (known: " + joined_names() + ")");
+}
+
+template <class Params>
+Params overlaid(Params defaults, const nlohmann::json& params, const std::string& name) {
+  overlay_params_json(defaults, params, "generator", name);
+  validate(defaults, name);
+  return defaults;
+}
+
+// The defaults a Manhattan-family generator starts from.
+std::optional<ManhattanParams> manhattan_defaults(const std::string& name) {
+  if (name == "manhattan") return ManhattanParams{};
+  if (name == "plaza") return plaza_params();
+  if (name == "default") return default_city_params();
+  return std::nullopt;
+}
+
+}  // namespace
+
+const std::vector<std::string>& city_generator_names() {
+  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis"};
+  return names;
+}
+
+nlohmann::json resolved_city_params(const std::string& name, const nlohmann::json& params) {
+  if (auto m = manhattan_defaults(name)) return params_to_json(overlaid(*m, params, name));
+  if (name == "scatter") return params_to_json(overlaid(ScatterParams{}, params, name));
+  if (name == "irregular") return params_to_json(overlaid(IrregularParams{}, params, name));
+  if (name == "thesis") return params_to_json(overlaid(ThesisParams{}, params, name));
+  unknown_generator(name);
+}
+
+Scene make_city(const std::string& name, std::uint64_t seed, const nlohmann::json& params) {
+  if (auto m = manhattan_defaults(name)) {
+    const ManhattanParams p = overlaid(*m, params, name);
+    Scene scene = name == "plaza" ? plaza_city(p, seed) : manhattan_city(p, seed);
+    scene.provenance.generator = name;
+    return scene;
+  }
+  if (name == "scatter") return scatter_city(overlaid(ScatterParams{}, params, name), seed);
+  if (name == "irregular") return irregular_city(overlaid(IrregularParams{}, params, name), seed);
+  if (name == "thesis") return thesis_city(overlaid(ThesisParams{}, params, name), seed);
+  unknown_generator(name);
+}
+
+std::optional<ManhattanParams> manhattan_params_of(const Scene& scene) {
+  std::optional<ManhattanParams> p = manhattan_defaults(scene.provenance.generator);
+  if (!p) return std::nullopt;
+  nlohmann::json stored;
+  try {
+    stored = nlohmann::json::parse(scene.provenance.parameters_json);
+  } catch (const nlohmann::json::parse_error&) {
+    throw InputError("scene", "provenance.parameters", "is not valid JSON");
+  }
+  overlay_params_json(*p, stored, "scene", "provenance.parameters of generator " + scene.provenance.generator);
+  validate(*p, scene.provenance.generator);
+  return p;
+}
+
+}  // namespace cullcheck::generators

@@ -1,0 +1,43 @@
+#include "oracle/mesh.hpp"
+
+#include <cmath>
+
+namespace cullcheck::oracle {
+
+TriangleMesh triangulate(const Scene& scene) {
+  TriangleMesh mesh;
+  if (!scene.buildings.empty()) {
+    const Box3 box = scene.bounds();
+    mesh.origin = {std::round((box.lo.x + box.hi.x) / 2), std::round((box.lo.y + box.hi.y) / 2), 0.0};
+  }
+  mesh.vertices.reserve(4 * scene.triangle_count());
+  mesh.triangles.reserve(scene.triangle_count());
+  auto add_triangle = [&](Vec3 a, Vec3 b, Vec3 c, std::uint32_t owner) {
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back(a), mesh.vertices.push_back(b), mesh.vertices.push_back(c);
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.owner_index.push_back(owner);
+    mesh.owner_id.push_back(scene.buildings[owner].id);
+  };
+  // Vertices are not shared between triangles: Embree's watertight (robust) test needs equal
+  // positions, not equal indices, and the same double always rounds to the same float.
+  for (std::uint32_t i = 0; i < scene.buildings.size(); ++i) {
+    const Building& b = scene.buildings[i];
+    const std::size_t n = b.footprint.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2 p = b.footprint[k], q = b.footprint[(k + 1) % n];
+      const Vec3 p0{p.x, p.y, 0.0}, q0{q.x, q.y, 0.0}, p1{p.x, p.y, b.height}, q1{q.x, q.y, b.height};
+      // Counter-clockwise footprint: (p0, q0, q1) has the outward normal.
+      add_triangle(p0, q0, q1, i);
+      add_triangle(p0, q1, p1, i);
+    }
+    for (const ConvexVerticalPrism& prism : b.prisms) {
+      const auto& r = prism.ring;
+      for (std::size_t k = 1; k + 1 < r.size(); ++k)
+        add_triangle({r[0].x, r[0].y, b.height}, {r[k].x, r[k].y, b.height}, {r[k + 1].x, r[k + 1].y, b.height}, i);
+    }
+  }
+  return mesh;
+}
+
+}  // namespace cullcheck::oracle

@@ -1,0 +1,60 @@
+// The oracle's one entry point (design: "Oracle"): what is really visible from a camera.
+//
+// It picks the cheapest model that is exact for the scene and camera, and says which:
+//  - "exact_2d": plan-view visibility with exact CGAL geometry, when check_exact_2d says the
+//    plan view is the 3D truth (level camera, every building taller than the eye, nothing can
+//    be seen over a building, far beyond the scene). `visible` is then the true visible set.
+//  - "ray_sampling_3d": Embree ray sampling otherwise. `visible` is the witnessed set, a lower
+//    bound of the true visible set at the stated sampling density; every member has a
+//    witness ray.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oracle/exact_2d.hpp"
+#include "oracle/ray_oracle.hpp"
+
+namespace cullcheck::oracle {
+
+inline constexpr const char* kModelExact2d = "exact_2d";
+inline constexpr const char* kModelRaySampling3d = "ray_sampling_3d";
+
+struct OracleOptions {
+  SamplingOptions sampling;
+  bool allow_exact_2d = true;  // false forces ray sampling (e.g. to compare the two models)
+};
+
+struct OracleAnswer {
+  std::string model;             // kModelExact2d or kModelRaySampling3d
+  std::string why;               // why this model was picked (check_exact_2d's reason)
+  bool exact = false;            // true when `visible` is the true visible set
+  std::vector<ObjectId> visible;  // sorted ids
+  std::optional<Exact2dResult> exact_2d;  // set when model == exact_2d
+  std::optional<OracleResult> sampling;   // set when model == ray_sampling_3d
+  double elapsed_seconds = 0.0;
+};
+
+class Oracle {
+ public:
+  // Builds the Embree scene now; the exact 2D structure on the first query that needs it.
+  // The Scene must outlive the oracle.
+  explicit Oracle(const Scene& scene);
+  ~Oracle();
+
+  OracleAnswer visible_set(const Camera& camera, const OracleOptions& options = {}) const;
+
+  const RayOracle& rays() const { return rays_; }
+  const ExactVisibility2d& exact_2d() const;
+
+ private:
+  const Scene& scene_;
+  RayOracle rays_;
+  mutable std::once_flag exact_once_;
+  mutable std::unique_ptr<ExactVisibility2d> exact_;
+};
+
+}  // namespace cullcheck::oracle

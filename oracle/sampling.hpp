@@ -1,0 +1,45 @@
+// Sampling density of the ray oracle (design: "Oracle"; reports state it next to every count).
+//
+// The witnessed set is a lower bound of the true visible set; these knobs say how dense the
+// rays are, so a report can say how close to the true set the bound is expected to be.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json_fwd.hpp>
+
+namespace cullcheck::oracle {
+
+struct SamplingOptions {
+  // Surface samples, per face of every candidate building (walls and roof pieces). Along each
+  // face dimension of length L the grid has max(face_grid, ceil(L / spacing_m)) intervals; the
+  // face's edges (including the vertices) get max(edge_samples, that) intervals.
+  double spacing_m = 2.0;
+  int face_grid = 4;
+  int edge_samples = 4;
+  // Samples that sit exactly on an edge aim a ray that grazes the object; each edge and corner
+  // sample also has a copy moved into the face by `inset` (relative to the face's size), whose
+  // ray hits the face unambiguously.
+  double inset = 1e-4;
+  // When a building would get more samples than this, its spacing is widened until it fits.
+  std::size_t max_samples_per_building = 4096;
+  // Stratified rays over the view volume: a jittered grid of `frustum_resolution` columns over
+  // the image plane (rows in proportion to the aspect ratio); omnidirectional cameras get
+  // 2N azimuth columns by N rows, equal-area (uniform in sin(elevation)). 0 disables them.
+  int frustum_resolution = 256;
+  // Seed of the jitter PRNG (SplitMix64, implemented in the oracle: the same seed gives the
+  // same rays on every platform).
+  std::uint64_t seed = 0x5eed5eedULL;
+  // Threads casting rays. Results are merged in ray order, so they do not depend on this.
+  int threads = 2;
+
+  friend bool operator==(const SamplingOptions&, const SamplingOptions&) = default;
+};
+
+// Throws InputError naming the field if an option is out of range.
+void validate(const SamplingOptions& o);
+
+void to_json(nlohmann::json& j, const SamplingOptions& o);
+void from_json(const nlohmann::json& j, SamplingOptions& o);
+
+}  // namespace cullcheck::oracle

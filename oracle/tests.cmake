@@ -1,0 +1,15 @@
+# The oracle's own tests (GoogleTest) and micro-benchmark. Included by the top-level
+# CMakeLists.txt after add_subdirectory(oracle), where enable_testing() is in effect.
+add_executable(oracle_test
+  ${CMAKE_CURRENT_LIST_DIR}/tests/agreement_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/exact_2d_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/mesh_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/oracle_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/ray_oracle_test.cpp)
+target_link_libraries(oracle_test PRIVATE cullcheck_oracle GTest::gtest_main cullcheck_warnings)
+add_test(NAME oracle_test COMMAND oracle_test)
+
+if(TARGET benchmark::benchmark)
+  add_executable(oracle_bench ${CMAKE_CURRENT_LIST_DIR}/bench_oracle.cpp)
+  target_link_libraries(oracle_bench PRIVATE cullcheck_oracle benchmark::benchmark cullcheck_warnings)
+endif()

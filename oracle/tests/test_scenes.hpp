@@ -1,0 +1,111 @@
+// Small hand-built scenes and seeded random cities for the oracle's tests. The generators
+// library is developed separately; these tests build their own scenes so that they depend on
+// core/ and oracle/ only.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/scene_io.hpp"
+#include "oracle/splitmix64.hpp"
+
+namespace cullcheck::oracle::testing {
+
+inline constexpr double kDeg = kPi / 180.0;
+
+inline Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height) {
+  Building b;
+  b.id = id;
+  b.height = height;
+  b.footprint = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  validate_and_finish(b);
+  return b;
+}
+
+inline Building polygon_building(ObjectId id, std::vector<Vec2> ring, double height) {
+  Building b;
+  b.id = id;
+  b.height = height;
+  b.footprint = std::move(ring);
+  validate_and_finish(b);
+  return b;
+}
+
+inline Scene scene_of(std::vector<Building> buildings) {
+  Scene s;
+  s.provenance.generator = "oracle_test";
+  s.buildings = std::move(buildings);
+  return s;
+}
+
+inline Camera level_camera(Vec3 eye, double yaw, double hfov = 60 * kDeg, double vfov = 60 * kDeg) {
+  Camera c;
+  c.position = eye;
+  c.yaw = yaw;
+  c.hfov = hfov;
+  c.vfov = vfov;
+  return c;
+}
+
+inline Camera omni_camera(Vec3 eye) {
+  Camera c;
+  c.position = eye;
+  c.hfov = kTwoPi;
+  return c;
+}
+
+// A random city of non-overlapping rectangles (at least 1 m apart), all taller than the eye,
+// and a level camera in free space whose view cannot pass over any building, so that the
+// exact plan-view oracle applies. Three kinds, by seed % 3: perspective with heights rising
+// with distance (seeing over is impossible because of the vertical fov), perspective with
+// equal heights, and omnidirectional with equal heights.
+struct RandomCity {
+  Scene scene;
+  Camera camera;
+  std::string kind;
+};
+
+inline RandomCity random_city(std::uint64_t seed) {
+  SplitMix64 rng(seed * 0x2545F4914F6CDD1DULL + 1);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * rng.unit(); };
+  RandomCity city;
+  const int n = 30 + int(rng.next() % 71);
+  const double half = 14.0 * std::sqrt(double(n));
+  std::vector<Box2> boxes;
+  for (int attempt = 0; attempt < 60 * n && int(boxes.size()) < n; ++attempt) {
+    const double w = uniform(4, 25), d = uniform(4, 25);
+    const Vec2 c{uniform(-half, half), uniform(-half, half)};
+    const Box2 box{{c.x - w / 2, c.y - d / 2}, {c.x + w / 2, c.y + d / 2}};
+    bool free = true;
+    for (const Box2& o : boxes)
+      free = free && (box.lo.x > o.hi.x + 1 || o.lo.x > box.hi.x + 1 || box.lo.y > o.hi.y + 1 || o.lo.y > box.hi.y + 1);
+    if (free) boxes.push_back(box);
+  }
+  Vec2 eye;
+  for (;;) {
+    eye = {uniform(-half, half), uniform(-half, half)};
+    bool clear = true;
+    for (const Box2& b : boxes) clear = clear && min_distance(eye, b) >= 2.0;
+    if (clear) break;
+  }
+  const double eye_z = uniform(1.5, 2.0);
+  const int kind = int(seed % 3);
+  Camera camera = kind == 2 ? omni_camera({eye.x, eye.y, eye_z})
+                            : level_camera({eye.x, eye.y, eye_z}, uniform(0, kTwoPi), uniform(40, 120) * kDeg,
+                                           uniform(20, kind == 0 ? 60 : 90) * kDeg);
+  const double shared_height = uniform(15, 40);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const Box2& b = boxes[i];
+    const double h = kind == 0 ? eye_z + max_distance(eye, b) * std::tan(camera.vfov / 2) + uniform(1, 40) : shared_height;
+    city.scene.buildings.push_back(box_building(ObjectId(100 + i), b.lo.x, b.lo.y, b.hi.x, b.hi.y, h));
+  }
+  city.scene.provenance = {"oracle_test.random_city", seed, "{}"};
+  city.camera = camera;
+  city.kind = kind == 0 ? "perspective, heights rising with distance" : kind == 1 ? "perspective, equal heights" : "omnidirectional, equal heights";
+  return city;
+}
+
+}  // namespace cullcheck::oracle::testing
