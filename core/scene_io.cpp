@@ -38,7 +38,7 @@ const json& member(const json& j, const char* key, const std::string& object) {
 json parse(const std::string& text, const std::string& what) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers that overflow a double
     throw InputError(what, "(document)", std::string("is not valid JSON: ") + e.what());
   }
 }

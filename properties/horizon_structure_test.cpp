@@ -11,7 +11,9 @@
 #include "core/scene_io.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/horizon/polar_geometry.hpp"
+#include "engine/horizon/object_space_horizon.hpp"
 #include "engine/spatial/quadtree.hpp"
+#include "generators/rapidcheck_gens.hpp"
 
 namespace cullcheck {
 namespace {
@@ -137,6 +139,17 @@ TEST(Quadtree, InvariantsHoldOnAGrid) {
         EXPECT_LE(cell.last - cell.first, leaf);
       }
   }
+}
+
+// After real culls on generated scenes and cameras, the horizon tree still satisfies its
+// invariant, and the quadtree built for any generated scene encloses its buildings.
+RC_GTEST_PROP(StructureInvariants, HoldOnGeneratedScenesAfterCulling, ()) {
+  const generators::SceneCase c = *generators::rcgen::scene_case();
+  const Scene scene = generators::scene_of(c.spec);
+  ObjectSpaceHorizonCulling method(scene, ShadowRule::conservative, {256, 4});
+  RC_ASSERT(method.quadtree().check_invariants(scene) == "");
+  (void)method.cull(c.camera);
+  RC_ASSERT(method.horizon().check_invariants() == "");
 }
 
 }  // namespace

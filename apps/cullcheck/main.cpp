@@ -1,7 +1,8 @@
 // cullcheck: the command-line program. Thin: it parses flags and calls the libraries.
 //
 // Exit codes: 0 success; 1 a method that claims to be conservative culled something the oracle
-// saw (the CI gate); 2 bad input (one line on stderr naming the object and field).
+// saw (the CI gate); 2 bad input (one line on stderr naming the object and field); 3 an
+// internal error (a bug: please report it with the command line).
 #include <CLI/CLI.hpp>
 
 #include <fstream>
@@ -24,6 +25,7 @@ namespace {
 
 constexpr int kExitGateFailed = 1;
 constexpr int kExitBadInput = 2;
+constexpr int kExitInternalError = 3;
 
 struct SceneFlags {
   cc::SceneSource source;
@@ -246,6 +248,9 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "cullcheck: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "cullcheck: internal error: " << e.what() << "\n";
+    return kExitInternalError;
   }
   return 0;
 }

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# End-to-end checks of the `cullcheck` program: every subcommand runs, bad input gives one clear
+# line and exit 2, a failed run never clobbers a file already written, output is deterministic.
+# Usage: cli_test.sh /path/to/cullcheck
+set -u
+cc="$1"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passes=0
+pass() { passes=$((passes + 1)); }
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+expect_exit() {  # expected-code description command...
+  local want=$1 what=$2
+  shift 2
+  "$@" >"$work/out" 2>"$work/err"
+  local got=$?
+  if [ "$got" -ne "$want" ]; then
+    fail "$what: exit $got, expected $want"; sed 's/^/  | /' "$work/err" | head -5
+  else
+    pass
+  fi
+}
+
+expect_error_names() {  # description text-that-must-appear
+  if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
+}
+
+for sub in generate cull verify report; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+
+# generate: deterministic bytes, OBJ and path outputs.
+expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
+  -o "$work/a.json" --obj "$work/a.obj" --path-output "$work/path.json"
+expect_exit 0 "generate again" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' -o "$work/b.json"
+if cmp -s "$work/a.json" "$work/b.json"; then pass; else fail "same seed gave different scene files"; fi
+[ -s "$work/a.obj" ] && pass || fail "no OBJ written"
+[ -s "$work/path.json" ] && pass || fail "no path written"
+
+# cull and verify on the written scene.
+camera='{"position":[0,0,1.7],"yaw":0.3,"hfov":1.2,"vfov":0.8}'
+expect_exit 0 "cull" "$cc" cull --scene "$work/a.json" --method oh_os_conservative --camera "$camera"
+grep -q '"pvs"' "$work/out" && pass || fail "cull printed no pvs"
+expect_exit 0 "verify a camera" "$cc" verify --scene "$work/a.json" --camera "$camera"
+expect_exit 0 "verify a path" "$cc" verify --scene "$work/a.json" --path "$work/path.json" --method oh_os_conservative,frustum
+
+# Bad input: exit 2, one line naming object and field.
+printf '{"format":"cullcheck-scene","version":1,"buildings":[{"id":3,"height":-1,"footprint":[[0,0],[1,0],[1,1]]}]}' >"$work/bad.json"
+expect_exit 2 "negative height" "$cc" cull --scene "$work/bad.json" --camera "$camera"
+expect_error_names "negative height" "building 3: field 'height'"
+printf '{"format":"cullcheck-scene","version":1,"buildings":[{"id":4,"height":5,"footprint":[[0,0],[NaN,0],[1,1]]}]}' >"$work/nan.json"
+expect_exit 2 "NaN coordinate" "$cc" cull --scene "$work/nan.json" --camera "$camera"
+expect_error_names "NaN coordinate" "is not valid JSON"
+expect_exit 2 "missing file" "$cc" cull --scene "$work/nope.json" --camera "$camera"
+expect_error_names "missing file" "cannot be opened"
+expect_exit 2 "camera below ground" "$cc" cull --scene "$work/a.json" --camera '{"position":[0,0,-2]}'
+expect_error_names "camera below ground" "position.z"
+expect_exit 2 "unknown method" "$cc" cull --scene "$work/a.json" --method nonsense --camera "$camera"
+expect_error_names "unknown method" "unknown method 'nonsense'"
+expect_exit 2 "unknown generator" "$cc" generate --generator moon -o "$work/c.json"
+expect_error_names "unknown generator" "generator"
+expect_exit 2 "bad generator parameter" "$cc" generate --generator manhattan --params '{"blocks_x":-4}' -o "$work/c.json"
+expect_error_names "bad generator parameter" "blocks_x"
+expect_exit 2 "unknown flag" "$cc" cull --frobnicate
+
+# A failed generate leaves an existing file untouched.
+cp "$work/a.json" "$work/keep.json"
+expect_exit 2 "failed generate" "$cc" generate --generator manhattan --params '{"blocks_x":0}' -o "$work/keep.json"
+if cmp -s "$work/a.json" "$work/keep.json"; then pass; else fail "a failed run changed an existing file"; fi
+# An unwritable destination is an error naming the file, not a crash.
+expect_exit 2 "unwritable output" "$cc" generate --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' -o "$work/no/such/dir/x.json"
+expect_error_names "unwritable output" "cannot be opened for writing"
+
+# The CI gate: a refuted method's violation is reported with a replay line.
+printf '{"format":"cullcheck-scene","version":1,"buildings":[{"id":0,"height":10,"footprint":[[20,-20],[21,-20],[21,20],[20,20]]},{"id":1,"height":1,"footprint":[[40,-0.5],[41,-0.5],[41,0.5],[40,0.5]]}]}' >"$work/slab.json"
+expect_exit 0 "published rule is reported, not gated" "$cc" verify --scene "$work/slab.json" --method oh_os_thesis \
+  --camera '{"position":[0,0,30],"pitch":-0.6,"hfov":1.047,"vfov":0.785}'
+grep -q "replay: cullcheck verify --scene" "$work/out" && pass || fail "violation printed no replay line"
+
+echo "cli_test: $passes passed, $failures failed"
+[ "$failures" -eq 0 ]
