@@ -7,4 +7,4 @@ cd "$(dirname "$0")/.."
 bash ci/install-deps.sh
 cmake --preset default
 cmake --build --preset default -j "$(nproc)"
-./build/apps/cullcheck/cullcheck run --output report.json
+./build/apps/cullcheck/cullcheck report --output report.json

@@ -180,8 +180,11 @@ Scene make_city(const std::string& generator_name, std::uint64_t seed, const nlo
 // stored in Provenance::parameters_json.
 nlohmann::json resolved_city_params(const std::string& generator_name, const nlohmann::json& params);
 
-// The street grid of a scene made by manhattan, plaza or default (read back from its
+// The street grid of a scene made by manhattan, plaza, default or thesis (read back from its
 // provenance), so camera paths can follow its streets; nullopt for other scenes.
 std::optional<ManhattanParams> manhattan_params_of(const Scene& scene);
+// The Manhattan street grid that a thesis city's streets coincide with (its blocks of
+// buildings_per_block_side^2 buildings as blocks); nullopt when the grid is not whole blocks.
+std::optional<ManhattanParams> thesis_street_grid(const ThesisParams& t);
 
 }  // namespace cullcheck::generators

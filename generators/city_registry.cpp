@@ -62,17 +62,35 @@ Scene make_city(const std::string& name, std::uint64_t seed, const nlohmann::jso
 }
 
 std::optional<ManhattanParams> manhattan_params_of(const Scene& scene) {
-  std::optional<ManhattanParams> p = manhattan_defaults(scene.provenance.generator);
-  if (!p) return std::nullopt;
   nlohmann::json stored;
   try {
     stored = nlohmann::json::parse(scene.provenance.parameters_json);
   } catch (const nlohmann::json::parse_error&) {
     throw InputError("scene", "provenance.parameters", "is not valid JSON");
   }
+  if (scene.provenance.generator == "thesis") {
+    ThesisParams t;
+    overlay_params_json(t, stored, "scene", "provenance.parameters of generator thesis");
+    return thesis_street_grid(t);
+  }
+  std::optional<ManhattanParams> p = manhattan_defaults(scene.provenance.generator);
+  if (!p) return std::nullopt;
   overlay_params_json(*p, stored, "scene", "provenance.parameters of generator " + scene.provenance.generator);
   validate(*p, scene.provenance.generator);
   return p;
+}
+
+std::optional<ManhattanParams> thesis_street_grid(const ThesisParams& t) {
+  const int side = t.buildings_per_block_side;
+  if (t.grid_x % side != 0 || t.grid_y % side != 0) return std::nullopt;
+  // Both layouts centre the city on the origin and put one street width between blocks, so a
+  // Manhattan grid of blocks as wide as a thesis block has the same street centre lines.
+  ManhattanParams m;
+  m.blocks_x = t.grid_x / side;
+  m.blocks_y = t.grid_y / side;
+  m.block_size = side * t.building_size + (side - 1) * t.building_gap;
+  m.street_width = t.street_width;
+  return m;
 }
 
 }  // namespace cullcheck::generators

@@ -363,6 +363,17 @@ TEST(StreetWalk, DeterministicRoundTripsAndReadsStreetsFromTheScene) {
   EXPECT_EQ(make_camera_path("street_walk", scene, 11, json::object()).frames.size(), 1800u);
 }
 
+// The thesis testbed's streets coincide with a Manhattan grid of its blocks, so the street walk
+// (Table 3.2's setting) runs on it and never enters a building.
+TEST(StreetWalk, RunsInTheThesisCityStreets) {
+  const Scene scene = make_city("thesis", 2, {{"grid_x", 20}, {"grid_y", 15}});
+  const CameraPath path = make_camera_path("street_walk", scene, 4, {{"frames", 3000}});
+  ASSERT_EQ(path.frames.size(), 3000u);
+  const OpenSpace open(scene);
+  for (const Camera& c : path.frames) ASSERT_TRUE(open.is_open(plan(c.position), 0.5)) << c.position.x << ", " << c.position.y;
+  EXPECT_FALSE(thesis_street_grid(ThesisParams{.grid_x = 21}));  // not whole blocks: no street grid
+}
+
 TEST(FlyThrough, SixDofAboveRoofsWithDipsNeverInsideABuilding) {
   for (const SceneSpec& spec : {SceneSpec{"default", 4, json::object()}, SceneSpec{"irregular", 4, {{"count", 150}}}}) {
     SCOPED_TRACE(replay_args(spec));
