@@ -72,6 +72,15 @@ void validate_and_finish(Building& b) {
   finish_building(b);
 }
 
+Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height) {
+  Building b;
+  b.id = id;
+  b.height = height;
+  b.footprint = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  validate_and_finish(b);
+  return b;
+}
+
 void rebase_if_far(Scene& scene) {
   if (scene.buildings.empty()) return;
   const Box2 box = scene.bounds().plan();

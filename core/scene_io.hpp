@@ -34,6 +34,8 @@ void write_scene_file(const Scene& scene, const std::string& path);
 // Validates and normalises one building in place (orientation, closing vertex), then fills its
 // prisms and bounds. Used by the reader and by generators, so both obey the same rules.
 void validate_and_finish(Building& b);
+// A validated building whose footprint is the axis-aligned rectangle [x0, x1] x [y0, y1].
+Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height);
 // Moves every coordinate so the scene's centre sits near (0, 0) when it is far from the origin.
 void rebase_if_far(Scene& scene);
 

@@ -13,15 +13,6 @@
 namespace cullcheck {
 namespace {
 
-Building box(ObjectId id, double x0, double y0, double x1, double y1, double h) {
-  Building b;
-  b.id = id;
-  b.height = h;
-  b.footprint = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  validate_and_finish(b);
-  return b;
-}
-
 Camera camera_at(Vec3 eye, double yaw, double pitch = 0.0, double hfov = kPi / 2, double vfov = kPi / 3) {
   Camera c;
   c.position = eye;
@@ -56,9 +47,9 @@ Scene street(double offset_x = 0.0, double offset_y = 0.0) {
   ObjectId id = 0;
   for (int i = 0; i < 6; ++i) {
     const double x = offset_x + i * 12.0;
-    s.buildings.push_back(box(id++, x, offset_y + 8, x + 10, offset_y + 20, 6.0 + 3 * (i % 3)));
-    s.buildings.push_back(box(id++, x, offset_y - 20, x + 10, offset_y - 8, 15.0 - 2 * (i % 4)));
-    s.buildings.push_back(box(id++, x + 2, offset_y + 26, x + 8, offset_y + 30, 25.0));
+    s.buildings.push_back(box_building(id++, x, offset_y + 8, x + 10, offset_y + 20, 6.0 + 3 * (i % 3)));
+    s.buildings.push_back(box_building(id++, x, offset_y - 20, x + 10, offset_y - 8, 15.0 - 2 * (i % 4)));
+    s.buildings.push_back(box_building(id++, x + 2, offset_y + 26, x + 8, offset_y + 30, 25.0));
   }
   return s;
 }
@@ -80,17 +71,17 @@ TEST(NumericalExtremes, CoordinatesOffsetByTenMillionMetres) {
 
 TEST(NumericalExtremes, OneMillimetreAndTenKilometreBuildings) {
   Scene s;
-  s.buildings = {box(0, 10, -0.0005, 10.001, 3, 20),    // 1 mm thin slab
-                 box(1, 30, -5000, 40, 5000, 30),       // 10 km long wall
-                 box(2, 20, -1, 22, 1, 4), box(3, 60, -2, 64, 2, 50)};
+  s.buildings = {box_building(0, 10, -0.0005, 10.001, 3, 20),    // 1 mm thin slab
+                 box_building(1, 30, -5000, 40, 5000, 30),       // 10 km long wall
+                 box_building(2, 20, -1, 22, 1, 4), box_building(3, 60, -2, 64, 2, 50)};
   for (double yaw : {0.0, 0.1, -0.1 + kTwoPi})
     for (double z : {1.7, 35.0, 80.0}) expect_conservative(s, camera_at({0, 0, z}, yaw, z > 30 ? -0.4 : 0.0), "mm and km");
 }
 
 TEST(NumericalExtremes, OccluderExactlyAtEyeHeight) {
   Scene s;
-  s.buildings = {box(0, 10, -5, 11, 5, 1.7), box(1, 20, -1, 21, 1, 1.7), box(2, 30, -1, 31, 1, 1.0),
-                 box(3, 40, -1, 41, 1, 2.5)};
+  s.buildings = {box_building(0, 10, -5, 11, 5, 1.7), box_building(1, 20, -1, 21, 1, 1.7), box_building(2, 30, -1, 31, 1, 1.0),
+                 box_building(3, 40, -1, 41, 1, 2.5)};
   const auto seen = expect_conservative(s, camera_at({0, 0, 1.7}, 0.0), "eye height");
   EXPECT_TRUE(std::binary_search(seen.begin(), seen.end(), 3u));  // shows above the eye-height wall
 }
@@ -105,18 +96,18 @@ TEST(NumericalExtremes, ViewpointOnAWallOnACornerAndInsideABuilding) {
 TEST(NumericalExtremes, AzimuthExactlyZeroPiAndJustBelowTwoPi) {
   Scene s;
   // Buildings straddling azimuth 0 (east), at π (west), and at the wrap from both sides.
-  s.buildings = {box(0, 10, -2, 12, 2, 10), box(1, 30, -6, 32, 6, 20), box(2, -12, -2, -10, 2, 10),
-                 box(3, -32, -6, -30, 6, 20), box(4, 20, -0.5, 21, 0.0, 30), box(5, 20, 0.0, 21, 0.5, 30)};
+  s.buildings = {box_building(0, 10, -2, 12, 2, 10), box_building(1, 30, -6, 32, 6, 20), box_building(2, -12, -2, -10, 2, 10),
+                 box_building(3, -32, -6, -30, 6, 20), box_building(4, 20, -0.5, 21, 0.0, 30), box_building(5, 20, 0.0, 21, 0.5, 30)};
   for (double yaw : {0.0, kPi, std::nextafter(kTwoPi, 0.0), kPi / 2})
     for (double hfov : {kPi / 2, kTwoPi}) expect_conservative(s, camera_at({0, 0, 1.7}, yaw, 0.0, hfov), "azimuth wrap");
 }
 
 TEST(NumericalExtremes, CollinearAndTouchingWalls) {
   Scene s;
-  s.buildings = {box(0, 10, -5, 12, 0, 10), box(1, 10, 0, 12, 5, 10),  // share the wall y = 0
-                 box(2, 12, -5, 14, 5, 8),                           // touches both
-                 box(3, 20, -0.5, 21, 0.5, 30),                      // behind the seam
-                 box(4, 10, 5, 12, 10, 12)};                         // collinear with 0 and 1
+  s.buildings = {box_building(0, 10, -5, 12, 0, 10), box_building(1, 10, 0, 12, 5, 10),  // share the wall y = 0
+                 box_building(2, 12, -5, 14, 5, 8),                           // touches both
+                 box_building(3, 20, -0.5, 21, 0.5, 30),                      // behind the seam
+                 box_building(4, 10, 5, 12, 10, 12)};                         // collinear with 0 and 1
   for (double y : {0.0, 1e-9, -1e-9, 5.0}) expect_conservative(s, camera_at({0, y, 1.7}, 0.0), "touching walls");
 }
 
@@ -127,7 +118,7 @@ TEST(NumericalExtremes, SliverFootprintsWorkAndZeroAreaIsRefused) {
   sliver.height = 20;
   sliver.footprint = {{10, 0}, {30, 0.001}, {10, 0.002}};  // 20 m long, 2 mm wide triangle
   validate_and_finish(sliver);
-  s.buildings = {sliver, box(1, 40, -1, 41, 1, 5)};
+  s.buildings = {sliver, box_building(1, 40, -1, 41, 1, 5)};
   expect_conservative(s, camera_at({0, 0.001, 1.7}, 0.0), "sliver");
   expect_conservative(s, camera_at({0, 10, 1.7}, -kPi / 4), "sliver, oblique");
   Building flat;

@@ -11,15 +11,6 @@
 namespace cullcheck {
 namespace {
 
-Building box(ObjectId id, double x0, double y0, double x1, double y1, double h) {
-  Building b;
-  b.id = id;
-  b.height = h;
-  b.footprint = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  validate_and_finish(b);
-  return b;
-}
-
 Camera level_camera(Vec3 eye, double yaw_degrees, double hfov_degrees = 90) {
   Camera c;
   c.position = eye;
@@ -34,8 +25,8 @@ bool contains(const std::vector<ObjectId>& pvs, ObjectId id) { return std::binar
 
 TEST(ObjectSpaceHorizon, TallWallHidesWhatIsBehindIt) {
   Scene scene;
-  scene.buildings = {box(0, 10, -5, 12, 5, 20), box(1, 30, -2, 35, 2, 10), box(2, 30, 20, 35, 25, 5),
-                     box(3, -20, -2, -15, 2, 10)};
+  scene.buildings = {box_building(0, 10, -5, 12, 5, 20), box_building(1, 30, -2, 35, 2, 10), box_building(2, 30, 20, 35, 25, 5),
+                     box_building(3, -20, -2, -15, 2, 10)};
   for (const char* name : {"oh_os_thesis", "oh_os_conservative"}) {
     auto method = make_method(name, scene);
     const CullResult r = method->cull(level_camera({0, 0, 1.7}, 0));
@@ -51,8 +42,8 @@ TEST(ObjectSpaceHorizon, TallWallHidesWhatIsBehindIt) {
 
 TEST(ObjectSpaceHorizon, OmnidirectionalSeesAllAround) {
   Scene scene;
-  scene.buildings = {box(0, 10, -2, 12, 2, 8), box(1, -12, -2, -10, 2, 8), box(2, -2, 10, 2, 12, 8),
-                     box(3, -2, -12, 2, -10, 8), box(4, 30, -1, 32, 1, 4)};
+  scene.buildings = {box_building(0, 10, -2, 12, 2, 8), box_building(1, -12, -2, -10, 2, 8), box_building(2, -2, 10, 2, 12, 8),
+                     box_building(3, -2, -12, 2, -10, 8), box_building(4, 30, -1, 32, 1, 4)};
   Camera c = level_camera({0, 0, 1.7}, 0);
   c.hfov = kTwoPi;
   for (const char* name : {"frustum", "oh_os_thesis", "oh_os_conservative"}) {
@@ -66,7 +57,7 @@ TEST(ObjectSpaceHorizon, OmnidirectionalSeesAllAround) {
 
 TEST(ObjectSpaceHorizon, EyeInsideAFootprintNeverCullsThatBuilding) {
   Scene scene;
-  scene.buildings = {box(0, -5, -5, 5, 5, 10), box(1, 20, -5, 25, 5, 30)};
+  scene.buildings = {box_building(0, -5, -5, 5, 5, 10), box_building(1, 20, -5, 25, 5, 30)};
   Camera c = level_camera({0, 0, 12}, 0);  // standing on the roof of building 0
   c.pitch = -0.5;
   for (const char* name : {"oh_os_thesis", "oh_os_conservative"}) {
@@ -83,7 +74,7 @@ TEST(ObjectSpaceHorizon, EyeInsideAFootprintNeverCullsThatBuilding) {
 // yet lies below the thesis's shadow.
 TEST(ObjectSpaceHorizon, ThesisShadowRuleHidesWhatShowsAboveALowWideRoof) {
   Scene scene;
-  scene.buildings = {box(0, 20, -20, 21, 20, 10), box(1, 40, -0.5, 41, 0.5, 1)};
+  scene.buildings = {box_building(0, 20, -20, 21, 20, 10), box_building(1, 40, -0.5, 41, 0.5, 1)};
   Camera c = level_camera({0, 0, 30}, 0, 60);
   c.pitch = -0.6;
   // Sight line from the eye to the kiosk's near top edge, at the slab's far wall:
@@ -95,7 +86,7 @@ TEST(ObjectSpaceHorizon, ThesisShadowRuleHidesWhatShowsAboveALowWideRoof) {
 
 TEST(ObjectSpaceHorizon, PitchAndRollMapTheFrustumToItsAzimuths) {
   Scene scene;
-  scene.buildings = {box(0, 10, -2, 12, 2, 8), box(1, -12, -2, -10, 2, 8)};
+  scene.buildings = {box_building(0, 10, -2, 12, 2, 8), box_building(1, -12, -2, -10, 2, 8)};
   Camera c = level_camera({0, 0, 1.7}, 0, 60);
   c.pitch = 80 * kPi / 180;  // looking almost straight up
   c.roll = 0.7;

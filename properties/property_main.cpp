@@ -1,6 +1,6 @@
 // main() for the property tests: fixes RapidCheck's seed and budget unless RC_PARAMS is given,
 // so CI runs are reproducible, and scales the budget with CULLCHECK_RC_BUDGET (e.g. 20 for a
-// long fuzzing run). On a failure RapidCheck prints RC_PARAMS="reproduce=..."; together with
+// long fuzzing run; the default is 500 cases per property). On a failure RapidCheck prints RC_PARAMS="reproduce=..."; together with
 // the test binary and --gtest_filter that is the one-line replay, which we print as well.
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   if (std::getenv("RC_PARAMS") == nullptr) {
     long budget = 1;
     if (const char* b = std::getenv("CULLCHECK_RC_BUDGET")) budget = std::max(1L, std::strtol(b, nullptr, 10));
-    const std::string params = "seed=20261125 max_success=" + std::to_string(100 * budget) + " max_size=100";
+    const std::string params = "seed=20261125 max_success=" + std::to_string(500 * budget) + " max_size=100";
     setenv("RC_PARAMS", params.c_str(), 1);
   }
   testing::InitGoogleTest(&argc, argv);

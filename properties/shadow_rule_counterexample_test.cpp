@@ -85,18 +85,9 @@ TEST(ShadowElevationRule, SearchRefutesThePublishedRuleAndShrinksTheCase) {
   std::cerr << "shrunk counterexample: " << shrunk << "\n";
 }
 
-Building slab(ObjectId id, double x0, double y0, double x1, double y1, double h) {
-  Building b;
-  b.id = id;
-  b.height = h;
-  b.footprint = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  validate_and_finish(b);
-  return b;
-}
-
 TEST(ShadowElevationRule, WideLowSlabSeenFromAboveRegression) {
   Scene scene;
-  scene.buildings = {slab(0, 20, -20, 21, 20, 10), slab(1, 40, -0.5, 41, 0.5, 1)};
+  scene.buildings = {box_building(0, 20, -20, 21, 20, 10), box_building(1, 40, -0.5, 41, 0.5, 1)};
   Camera c;
   c.position = {0, 0, 30};
   c.pitch = -0.6;

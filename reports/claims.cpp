@@ -6,6 +6,7 @@
 #include "engine/method.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
+#include "generators/open_space.hpp"
 #include "generators/random.hpp"
 #include "oracle/oracle.hpp"
 #include "reports/scene_source.hpp"
@@ -62,17 +63,12 @@ std::vector<Camera> rooftop_cameras(const Scene& scene, std::uint64_t seed, int 
   return cameras;
 }
 
-bool inside_convex(const std::vector<Vec2>& ring, Vec2 p) {
-  for (std::size_t i = 0, n = ring.size(); i < n; ++i)
-    if (cross(ring[(i + 1) % n] - ring[i], p - ring[i]) < 0.0) return false;
-  return true;
-}
-
 // Cameras a little above a building's roof, in front of its longest side and facing it: the
 // roof then spans a wide angle below the eye, where its far wall is nearer than its end corners
 // and the two shadow rules disagree most. The eye is lifted above any building it stands in.
 std::vector<Camera> near_roof_cameras(const Scene& scene, std::uint64_t seed, int count) {
   generators::Random random = generators::Random::stream(seed, 0xC1A2);
+  const generators::OpenSpace open(scene);
   std::vector<Camera> cameras;
   for (int i = 0; i < count && !scene.buildings.empty(); ++i) {
     const auto last = static_cast<std::int64_t>(scene.buildings.size()) - 1;
@@ -85,9 +81,7 @@ std::vector<Camera> near_roof_cameras(const Scene& scene, std::uint64_t seed, in
     const double distance = std::min(wx, wy) / 2 + random.uniform_real(1.0, 15.0);
     Camera c;
     c.position = {centre.x + away.x * distance, centre.y + away.y * distance, b.height + random.uniform_real(0.5, 10.0)};
-    for (const Building& other : scene.buildings)
-      for (const ConvexVerticalPrism& prism : other.prisms)
-        if (c.position.z <= prism.height && inside_convex(prism.ring, plan(c.position))) c.position.z = prism.height + 1.0;
+    if (open.inside_building(c.position)) c.position.z = open.roof_height_near(plan(c.position), 0.0) + 1.0;
     c.yaw = azimuth_of(centre - plan(c.position));
     c.pitch = -std::atan2(c.position.z, distance + 10.0);
     c.hfov = kPi / 2;

@@ -16,14 +16,7 @@ namespace cullcheck::oracle::testing {
 
 inline constexpr double kDeg = kPi / 180.0;
 
-inline Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height) {
-  Building b;
-  b.id = id;
-  b.height = height;
-  b.footprint = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  validate_and_finish(b);
-  return b;
-}
+using cullcheck::box_building;
 
 inline Building polygon_building(ObjectId id, std::vector<Vec2> ring, double height) {
   Building b;
