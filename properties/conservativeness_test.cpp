@@ -61,5 +61,14 @@ RC_GTEST_PROP(Conservativeness, ObjectSpaceHorizonWithOccludersAboveTheEye, ()) 
   check_conservative("oh_os_conservative", *rcgen::scene_case(rcgen::tall_occluder_spec(1.7)));
 }
 
+// Near planes from 1 cm to 5 m: clipped geometry hides nothing, so what reaches in front of the
+// near plane must not be used as an occluder.
+RC_GTEST_PROP(Conservativeness, ObjectSpaceHorizonWithDeepNearPlanes, ()) {
+  generators::SceneCase c = *rcgen::scene_case();
+  c.camera.near = *rc::gen::element(0.01, 0.5, 2.0, 5.0);
+  c.camera.far = std::max(c.camera.far, c.camera.near * 2);
+  check_conservative("oh_os_conservative", c);
+}
+
 }  // namespace
 }  // namespace cullcheck

@@ -149,5 +149,24 @@ TEST(NumericalExtremes, PitchPlusMinusNinetyDegrees) {
       }
 }
 
+// Geometry nearer than the near plane is clipped and hides nothing: a thin slab running away
+// from the eye, whose first half metre is clipped, must not hide what is seen past its clipped
+// end (found by hand; the engine now skips occluders that may reach in front of the near plane).
+TEST(NumericalExtremes, OccluderReachingInFrontOfTheNearPlane) {
+  Scene s;
+  Building slab;
+  slab.id = 0;
+  slab.height = 10;
+  slab.footprint = {{0.05, -0.02}, {3, 2.93}, {2.999, 2.931}, {0.049, -0.019}};
+  validate_and_finish(slab);
+  s.buildings = {slab, box_building(1, 20, 8, 21, 12, 10)};
+  for (double yaw : {0.45, 0.6}) {
+    Camera c = camera_at({0, 0, 1.7}, yaw, 0.0, 1.2, 0.8);
+    c.near = 0.5;
+    const auto seen = expect_conservative(s, c, "near-plane clipping");
+    EXPECT_TRUE(std::binary_search(seen.begin(), seen.end(), 1u));
+  }
+}
+
 }  // namespace
 }  // namespace cullcheck

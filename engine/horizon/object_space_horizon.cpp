@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <queue>
 
 #include "engine/horizon/polar_geometry.hpp"
@@ -65,6 +66,13 @@ CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
   const Vec2 e = plan(eye);
+  // Geometry nearer than the near plane is clipped and hides nothing. A point of the view
+  // volume lies at least `near` deep, so at least near / cos(corner angle) from the eye; a CVP
+  // whose plan distance is below that may be partly clipped and is not used as an occluder.
+  const double unclipped_distance =
+      camera.omnidirectional()
+          ? 0.0
+          : camera.near * std::sqrt(1.0 + std::pow(std::tan(camera.hfov / 2), 2) + std::pow(std::tan(camera.vfov / 2), 2));
   horizon_.reset();
   horizon_.restrict_to(azimuth_coverage(camera));
   horizon_.take_node_visits();
@@ -123,7 +131,7 @@ CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
     result.pvs.push_back(building.id);
     for (const ConvexVerticalPrism& prism : building.prisms) {
       const auto slope = shadow_slope(prism, eye);
-      if (!slope) continue;
+      if (!slope || min_boundary_distance(prism.ring, e) < unclipped_distance) continue;
       pending.push({max_vertex_distance(prism.ring, e), convex_span(prism.ring, e)->span, *slope, shadow_order++});
     }
   }

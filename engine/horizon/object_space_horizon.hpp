@@ -8,7 +8,8 @@
 // slope over its azimuth span is below min H there. A building that survives is in the PVS and
 // its CVPs' shadows are merged into H. A shadow is merged only once the sweep has passed the
 // CVP's farthest point (Downs et al.'s rule, "update OH at its maximum distance"), so whatever
-// is tested against H lies wholly behind every shadow in H.
+// is tested against H lies wholly behind every shadow in H. A CVP that may reach in front of the
+// near plane is not used as an occluder: the clipped part hides nothing.
 //
 // The shadow of a CVP is one elevation over its azimuth span (ch. 3.1.2, Fig. 3.4). Which
 // elevation is the variant:
