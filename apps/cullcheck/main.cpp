@@ -126,9 +126,11 @@ int main(int argc, char** argv) {
   CLI::App* cull = app.add_subcommand("cull", "Run one engine method for a camera and print its PVS as JSON");
   SceneFlags cull_scene;
   cull_scene.add(*cull);
-  std::string cull_method = "oh_os_conservative", cull_camera;
+  std::string cull_method = "oh_os_conservative", cull_camera, cull_path;
   cull->add_option("--method", cull_method, "Engine method")->capture_default_str();
-  cull->add_option("--camera", cull_camera, "Camera as JSON (scene-local coordinates)")->required();
+  auto* cull_camera_option = cull->add_option("--camera", cull_camera, "Camera as JSON (scene-local coordinates)");
+  auto* cull_path_option = cull->add_option("--path", cull_path, "Camera path file: prints one JSON line per frame");
+  cull_camera_option->excludes(cull_path_option);
 
   // verify -----------------------------------------------------------------------------------
   CLI::App* verify = app.add_subcommand("verify", "Hold methods to the oracle for one camera or a path; exit 1 on a violation");
@@ -150,7 +152,7 @@ int main(int argc, char** argv) {
   report_path.add(*report, 300);
   SamplingFlags report_sampling;
   report_sampling.add(*report);
-  std::string report_methods = "all", report_output = "report.json";
+  std::string report_methods = "all", report_output = "report.json", benchmark_json;
   std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
   cc::ClaimSearchOptions claim_options;
   report->add_option("--method", report_methods, "Comma-separated methods, or 'all'")->capture_default_str();
@@ -158,6 +160,8 @@ int main(int argc, char** argv) {
   report->add_option("--oracle-stride", oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
   report->add_option("--claim-scenes", claim_options.scenes, "Scenes searched per claim")->capture_default_str();
   report->add_option("--claim-seed", claim_options.seed, "Seed of the claim search")->capture_default_str();
+  report->add_option("--benchmark-json", benchmark_json,
+                     "Fold this Google Benchmark JSON output (bench_culling --benchmark_format=json) into the report");
 
   try {
     app.parse(argc, argv);
@@ -186,11 +190,21 @@ int main(int argc, char** argv) {
     }
     if (*cull) {
       const cc::Scene scene = cull_scene.source.load();
-      const cc::Camera camera = cc::camera_from_json_text(cull_camera);
       auto method = cc::make_method(cull_method, scene);
-      nlohmann::json out = pvs_json(method->cull(camera));
-      out["method"] = cull_method;
-      std::cout << out.dump() << "\n";
+      std::vector<cc::Camera> cameras;
+      if (cull_camera.empty() && cull_path.empty())
+        throw cc::InputError("command line", "camera", "give a camera (--camera JSON) or a path (--path FILE)");
+      if (!cull_path.empty()) {
+        cameras = cc::path_from_json_text(cc::read_text_file(cull_path)).frames;
+      } else {
+        cameras.push_back(cc::camera_from_json_text(cull_camera));
+      }
+      for (std::size_t frame = 0; frame < cameras.size(); ++frame) {
+        nlohmann::json out = pvs_json(method->cull(cameras[frame]));
+        out["method"] = cull_method;
+        if (!cull_path.empty()) out["frame"] = frame;
+        std::cout << out.dump() << "\n";
+      }
       return 0;
     }
     if (*verify) {
@@ -232,7 +246,10 @@ int main(int argc, char** argv) {
       in.path_parameters_json = report_path.file.empty() ? report_path.params : "{}";
       in.verification = &v;
       in.claims = cc::check_shadow_elevation_rule(claim_options);
-      cc::write_text_file_atomically(report_output, cc::build_report(in).dump(2) + "\n");
+      nlohmann::json document = cc::build_report(in);
+      if (!benchmark_json.empty())
+        document["benchmarks"] = PathFlags::parse_json(cc::read_text_file(benchmark_json), "benchmark-json");
+      cc::write_text_file_atomically(report_output, document.dump(2) + "\n");
       std::cout << cc::summary_table(v);
       for (const cc::ClaimCheck& c : in.claims) {
         std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
