@@ -129,9 +129,10 @@ CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
     }
     if (!visible) continue;
     result.pvs.push_back(building.id);
+    const bool may_be_clipped = item.distance < unclipped_distance;  // item.distance: nearest point of its box
     for (const ConvexVerticalPrism& prism : building.prisms) {
       const auto slope = shadow_slope(prism, eye);
-      if (!slope || min_boundary_distance(prism.ring, e) < unclipped_distance) continue;
+      if (!slope || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped_distance)) continue;
       pending.push({max_vertex_distance(prism.ring, e), convex_span(prism.ring, e)->span, *slope, shadow_order++});
     }
   }
