@@ -12,7 +12,7 @@ const ExactVisibility2d& Oracle::exact_2d() const {
   return *exact_;
 }
 
-OracleAnswer Oracle::visible_set(const Camera& camera, const OracleOptions& options) const {
+OracleAnswer Oracle::visible_set(const Camera& camera, const OracleOptions& options, RayLog* log) const {
   const auto start = std::chrono::steady_clock::now();
   OracleAnswer answer;
   const Exact2dApplicability applicability =
@@ -24,7 +24,7 @@ OracleAnswer Oracle::visible_set(const Camera& camera, const OracleOptions& opti
     answer.visible = answer.exact_2d->visible;
   } else {
     answer.model = kModelRaySampling3d;
-    answer.sampling = rays_.witness(camera, options.sampling);
+    answer.sampling = rays_.witness(camera, options.sampling, log);
     answer.visible = answer.sampling->witnessed;
   }
   answer.why = applicability.reason;

@@ -45,7 +45,8 @@ class Oracle {
   explicit Oracle(const Scene& scene);
   ~Oracle();
 
-  OracleAnswer visible_set(const Camera& camera, const OracleOptions& options = {}) const;
+  // With `log`, the rays of a ray-sampling query are appended to it (see RayOracle::witness).
+  OracleAnswer visible_set(const Camera& camera, const OracleOptions& options = {}, RayLog* log = nullptr) const;
 
   const RayOracle& rays() const { return rays_; }
   const ExactVisibility2d& exact_2d() const;

@@ -50,14 +50,14 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.totals.occluders_applied += s.occluders_applied;
     }
     if (frame % out.oracle.oracle_stride != 0) continue;
-    const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle);
+    // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
+    const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, first_log.rays.empty() ? &first_log : nullptr);
     ++out.oracle.frames_checked;
     out.oracle.seconds += answer.elapsed_seconds;
     if (answer.sampling) {
       ++out.oracle.frames_ray_sampling;
       out.oracle.rays_cast += answer.sampling->rays_cast;
       out.oracle.sampling_seconds += answer.sampling->elapsed_seconds;
-      if (first_log.rays.empty()) truth.rays().witness(camera, options.oracle.sampling, &first_log);
     } else {
       ++out.oracle.frames_exact_2d;
     }

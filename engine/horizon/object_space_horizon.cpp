@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <queue>
 
-#include "engine/horizon/polar_geometry.hpp"
 
 namespace cullcheck {
 namespace {
@@ -46,14 +46,12 @@ std::string ObjectSpaceHorizonCulling::name() const {
   return rule_ == ShadowRule::thesis ? "oh_os_thesis" : "oh_os_conservative";
 }
 
-std::optional<double> ObjectSpaceHorizonCulling::shadow_slope(const ConvexVerticalPrism& prism, Vec3 eye) const {
+double ObjectSpaceHorizonCulling::shadow_slope(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span) const {
   const Vec2 e = plan(eye);
-  const auto span = convex_span(prism.ring, e);
-  if (!span) return std::nullopt;
   const double rise = prism.height - eye.z;
   if (rule_ == ShadowRule::thesis || rise >= 0.0) {
-    const double d1 = length(prism.ring[span->first_tangent] - e);
-    const double d2 = length(prism.ring[span->last_tangent] - e);
+    const double d1 = length(prism.ring[span.first_tangent] - e);
+    const double d2 = length(prism.ring[span.last_tangent] - e);
     return std::min(rise / d1, rise / d2);
   }
   return rise / min_far_chain_distance(prism.ring, e);
@@ -80,6 +78,7 @@ CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
   MinQueue<SweepItem> sweep;
   MinQueue<PendingShadow> pending;
   std::uint64_t shadow_order = 0;
+  std::vector<std::optional<ConvexSpan>> spans;
   const auto& cells = quadtree_.cells();
   const auto& order = quadtree_.buildings();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
@@ -117,23 +116,25 @@ CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
     const Building& building = scene_.buildings[item.index];
     ++stats.buildings_tested;
     if (!volume.may_intersect(building.bounds) || hidden_box(building.bounds.plan(), building.height)) continue;
-    // The bounding box is visible; the building is hidden only if every CVP is.
+    // The bounding box is visible; the building is hidden only if every CVP is. Spans are kept
+    // for the shadows of a visible building.
+    spans.clear();
     bool visible = false;
     for (const ConvexVerticalPrism& prism : building.prisms) {
-      const auto span = convex_span(prism.ring, e);
-      if (!span || !horizon_.hides(span->span, max_slope(prism.height, eye.z, min_boundary_distance(prism.ring, e),
-                                                         max_vertex_distance(prism.ring, e)))) {
-        visible = true;
-        break;
-      }
+      spans.push_back(convex_span(prism.ring, e));
+      const auto& span = spans.back();
+      visible = visible || !span ||
+                !horizon_.hides(span->span, max_slope(prism.height, eye.z, min_boundary_distance(prism.ring, e),
+                                                      max_vertex_distance(prism.ring, e)));
     }
     if (!visible) continue;
     result.pvs.push_back(building.id);
     const bool may_be_clipped = item.distance < unclipped_distance;  // item.distance: nearest point of its box
-    for (const ConvexVerticalPrism& prism : building.prisms) {
-      const auto slope = shadow_slope(prism, eye);
-      if (!slope || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped_distance)) continue;
-      pending.push({max_vertex_distance(prism.ring, e), convex_span(prism.ring, e)->span, *slope, shadow_order++});
+    for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+      const ConvexVerticalPrism& prism = building.prisms[p];
+      // An eye inside or on a CVP gets no span: such a CVP cannot occlude.
+      if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped_distance)) continue;
+      pending.push({max_vertex_distance(prism.ring, e), spans[p]->span, shadow_slope(prism, eye, *spans[p]), shadow_order++});
     }
   }
   std::sort(result.pvs.begin(), result.pvs.end());

@@ -24,9 +24,9 @@
 #pragma once
 
 #include <memory>
-#include <optional>
 
 #include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/horizon/polar_geometry.hpp"
 #include "engine/method.hpp"
 #include "engine/spatial/quadtree.hpp"
 
@@ -46,9 +46,8 @@ class ObjectSpaceHorizonCulling final : public CullingMethod {
   // The horizon as left by the last query (for invariants, reports and the ΔH method).
   OcclusionHorizon& horizon() { return horizon_; }
   const Quadtree& quadtree() const { return quadtree_; }
-  // Slope of a CVP's shadow under this method's rule; nullopt when the CVP cannot occlude
-  // (the eye is inside it or on it).
-  std::optional<double> shadow_slope(const ConvexVerticalPrism& prism, Vec3 eye) const;
+  // Slope of a CVP's shadow under this method's rule, given its span seen from the eye.
+  double shadow_slope(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span) const;
 
  private:
   const Scene& scene_;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/camera.hpp"
+
 namespace cullcheck {
 namespace {
 
@@ -18,19 +20,20 @@ constexpr double kMaxSpan = kPi - 1e-9;
 
 }  // namespace
 
-std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
-  const std::size_t n = ring.size();
-  bool outside = false;
-  for (std::size_t i = 0; i < n && !outside; ++i) outside = cross(ring[(i + 1) % n] - ring[i], eye - ring[i]) < 0.0;
-  if (!outside) return std::nullopt;
-  // Angles relative to the first vertex's: a convex polygon seen from outside spans less than
-  // half a turn, so the extreme deltas in (-π, π] are its tangent vertices.
-  const double reference = std::atan2(ring[0].y - eye.y, ring[0].x - eye.x);
+namespace {
+
+// The smallest azimuth span holding every direction, with the indices of the extreme ones.
+// Relative to the first direction's angle, a set spanning less than half a turn has its
+// extremes at the smallest and largest deltas in (-π, π]. Empty for a zero direction or a set
+// spanning (nearly) half a turn or more.
+std::optional<ConvexSpan> span_of_directions(const std::vector<Vec2>& directions, double min_length) {
+  if (length(directions[0]) <= min_length) return std::nullopt;
+  const double reference = std::atan2(directions[0].y, directions[0].x);
   double lo = 0.0, hi = 0.0;
   std::size_t lo_index = 0, hi_index = 0;
-  for (std::size_t i = 1; i < n; ++i) {
-    const Vec2 d = ring[i] - eye;
-    if (d.x == 0.0 && d.y == 0.0) return std::nullopt;
+  for (std::size_t i = 1; i < directions.size(); ++i) {
+    const Vec2 d = directions[i];
+    if (length(d) <= min_length) return std::nullopt;
     const double delta = std::remainder(std::atan2(d.y, d.x) - reference, kTwoPi);
     if (delta < lo) lo = delta, lo_index = i;
     if (delta > hi) hi = delta, hi_index = i;
@@ -39,6 +42,19 @@ std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
   double begin = reference + lo;
   begin = begin < 0.0 ? begin + kTwoPi : (begin >= kTwoPi ? begin - kTwoPi : begin);
   return ConvexSpan{{begin, begin + (hi - lo)}, lo_index, hi_index};
+}
+
+}  // namespace
+
+std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
+  const std::size_t n = ring.size();
+  bool outside = false;
+  for (std::size_t i = 0; i < n && !outside; ++i) outside = cross(ring[(i + 1) % n] - ring[i], eye - ring[i]) < 0.0;
+  if (!outside) return std::nullopt;
+  std::vector<Vec2> directions;
+  directions.reserve(n);
+  for (Vec2 p : ring) directions.push_back(p - eye);
+  return span_of_directions(directions, 0.0);
 }
 
 std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye) {
@@ -68,44 +84,24 @@ double min_far_chain_distance(const std::vector<Vec2>& ring, Vec2 eye) {
   return d;
 }
 
-}  // namespace cullcheck
-
-#include "core/camera.hpp"
-
-namespace cullcheck {
 
 AzimuthSpan azimuth_coverage(const Camera& camera) {
   const AzimuthSpan full{0.0, kTwoPi};
   if (camera.omnidirectional()) return full;
-  const CameraBasis b = basis_of(camera);
-  const double th = std::tan(camera.hfov / 2), tv = std::tan(camera.vfov / 2);
-  // A vertical direction inside (or on) the pyramid: its plane tests, as in ViewVolume.
-  const double sh = std::sin(camera.hfov / 2), ch = std::cos(camera.hfov / 2);
-  const double sv = std::sin(camera.vfov / 2), cv = std::cos(camera.vfov / 2);
-  const Vec3 side_normals[4] = {b.forward * sh - b.right * ch, b.forward * sh + b.right * ch,
-                                b.forward * sv - b.up * cv, b.forward * sv + b.up * cv};
+  // A vertical direction inside (or on) the pyramid: the side planes of the view volume.
+  const ViewVolume volume(camera);
   for (double vertical : {1.0, -1.0}) {
     bool inside = true;
-    for (const Vec3& n : side_normals) inside = inside && n.z * vertical >= -1e-12;
+    for (int i = 0; i < 4; ++i) inside = inside && volume.planes[i].n.z * vertical >= -1e-12;
     if (inside) return full;
   }
+  const CameraBasis b = basis_of(camera);
+  const double th = std::tan(camera.hfov / 2), tv = std::tan(camera.vfov / 2);
   std::vector<Vec2> corners;
   for (double x : {-th, th})
-    for (double y : {-tv, tv}) {
-      const Vec3 d = b.forward + b.right * x + b.up * y;
-      if (std::hypot(d.x, d.y) < 1e-12) return full;
-      corners.push_back({d.x, d.y});
-    }
-  const double reference = std::atan2(corners[0].y, corners[0].x);
-  double lo = 0.0, hi = 0.0;
-  for (Vec2 d : corners) {
-    const double delta = std::remainder(std::atan2(d.y, d.x) - reference, kTwoPi);
-    lo = std::min(lo, delta), hi = std::max(hi, delta);
-  }
-  if (hi - lo >= kPi - 1e-9) return full;
-  double begin = reference + lo;
-  begin = begin < 0.0 ? begin + kTwoPi : (begin >= kTwoPi ? begin - kTwoPi : begin);
-  return {begin, begin + (hi - lo)};
+    for (double y : {-tv, tv}) corners.push_back(plan(b.forward + b.right * x + b.up * y));
+  const auto span = span_of_directions(corners, 1e-12);
+  return span ? span->span : full;
 }
 
 }  // namespace cullcheck
