@@ -15,6 +15,7 @@
 #include "core/scene_io.hpp"
 #include "engine/method.hpp"
 #include "generators/rapidcheck_gens.hpp"
+#include "generators/roof_cameras.hpp"
 #include "oracle/oracle.hpp"
 
 namespace cullcheck {
@@ -31,30 +32,16 @@ std::vector<ObjectId> missed_by(const std::string& method, const Scene& scene, c
   return missed;
 }
 
-// Cameras a little above each building's roof, in front of its longest sides and facing them:
-// the roof spans a wide angle below the eye, where its far wall is nearer than its end corners
-// and the two rules disagree most. Enumerated, not drawn, so that RapidCheck shrinks the city
-// and the camera follows (the first failing camera of the smallest failing city).
+// Roof-facing cameras (generators/roof_cameras.hpp) over every building. Enumerated, not drawn,
+// so that RapidCheck shrinks the city and the camera follows (the first failing camera of the
+// smallest failing city).
 std::vector<Camera> near_roof_cameras(const Scene& scene) {
+  const generators::OpenSpace open(scene);
   std::vector<Camera> cameras;
   for (const Building& b : scene.buildings)
     for (double side : {1.0, -1.0})
       for (double gap : {1.0, 4.0, 10.0})
-        for (double above : {0.5, 2.0, 6.0}) {
-          const Box2 box = b.bounds.plan();
-          const double wx = box.hi.x - box.lo.x, wy = box.hi.y - box.lo.y;
-          const Vec2 away = wx > wy ? Vec2{0.0, side} : Vec2{side, 0.0};
-          const double distance = std::min(wx, wy) / 2 + gap;
-          Camera c;
-          c.position = {box.center().x + away.x * distance, box.center().y + away.y * distance, b.height + above};
-          for (const Building& other : scene.buildings)  // stand on, never in, a building
-            if (other.bounds.plan().contains(plan(c.position))) c.position.z = std::max(c.position.z, other.height + 1.0);
-          c.yaw = azimuth_of(box.center() - plan(c.position));
-          c.pitch = -std::atan2(c.position.z, distance + 10.0);
-          c.hfov = kPi / 2;
-          c.vfov = kPi / 3;
-          cameras.push_back(c);
-        }
+        for (double above : {0.5, 2.0, 6.0}) cameras.push_back(generators::roof_facing_camera(open, b, side, gap, above));
   return cameras;
 }
 

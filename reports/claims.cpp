@@ -7,6 +7,7 @@
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
 #include "generators/open_space.hpp"
+#include "generators/roof_cameras.hpp"
 #include "generators/random.hpp"
 #include "oracle/oracle.hpp"
 #include "reports/scene_source.hpp"
@@ -63,9 +64,7 @@ std::vector<Camera> rooftop_cameras(const Scene& scene, std::uint64_t seed, int 
   return cameras;
 }
 
-// Cameras a little above a building's roof, in front of its longest side and facing it: the
-// roof then spans a wide angle below the eye, where its far wall is nearer than its end corners
-// and the two shadow rules disagree most. The eye is lifted above any building it stands in.
+// Seeded roof-facing cameras (generators/roof_cameras.hpp) over randomly drawn buildings.
 std::vector<Camera> near_roof_cameras(const Scene& scene, std::uint64_t seed, int count) {
   generators::Random random = generators::Random::stream(seed, 0xC1A2);
   const generators::OpenSpace open(scene);
@@ -73,20 +72,9 @@ std::vector<Camera> near_roof_cameras(const Scene& scene, std::uint64_t seed, in
   for (int i = 0; i < count && !scene.buildings.empty(); ++i) {
     const auto last = static_cast<std::int64_t>(scene.buildings.size()) - 1;
     const Building& b = scene.buildings[static_cast<std::size_t>(random.uniform_int(0, last))];
-    const Box2 box = b.bounds.plan();
-    const Vec2 centre = box.center();
-    const double wx = box.hi.x - box.lo.x, wy = box.hi.y - box.lo.y;
     const double side = random.bernoulli(0.5) ? 1.0 : -1.0;
-    const Vec2 away = wx > wy ? Vec2{0.0, side} : Vec2{side, 0.0};
-    const double distance = std::min(wx, wy) / 2 + random.uniform_real(1.0, 15.0);
-    Camera c;
-    c.position = {centre.x + away.x * distance, centre.y + away.y * distance, b.height + random.uniform_real(0.5, 10.0)};
-    if (open.inside_building(c.position)) c.position.z = open.roof_height_near(plan(c.position), 0.0) + 1.0;
-    c.yaw = azimuth_of(centre - plan(c.position));
-    c.pitch = -std::atan2(c.position.z, distance + 10.0);
-    c.hfov = kPi / 2;
-    c.vfov = kPi / 3;
-    cameras.push_back(c);
+    const double gap = random.uniform_real(1.0, 15.0);
+    cameras.push_back(generators::roof_facing_camera(open, b, side, gap, random.uniform_real(0.5, 10.0)));
   }
   return cameras;
 }
