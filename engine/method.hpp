@@ -21,6 +21,8 @@ struct CullStatistics {
   std::uint64_t buildings_tested = 0;   // buildings tested individually
   std::uint64_t horizon_nodes = 0;      // horizon tree nodes visited (queries + updates)
   std::uint64_t occluders_applied = 0;  // CVP shadows merged into the horizon
+  std::uint64_t items_skipped = 0;      // cells and buildings skipped untested (ΔH: known hidden)
+  std::uint64_t guard_fires = 0;        // ΔH: 1 when this frame fell back to a full recompute
   double cull_ms = 0.0;                 // wall time of this query
 };
 
@@ -36,12 +38,19 @@ class CullingMethod {
   virtual std::string name() const = 0;
   // Whether the method claims oracle-witnessed ⊆ PVS (the property and CI gate enforce it).
   virtual bool claims_conservative() const = 0;
+  // Whether that claim covers this camera. Methods whose claim depends on the camera (OH(IS):
+  // level cameras only) override it; the CI gate counts a frame's violations only when it is true.
+  virtual bool claims_conservative_for(const Camera& /*camera*/) const { return claims_conservative(); }
   virtual CullResult cull(const Camera& camera) = 0;
 };
 
 struct MethodOptions {
   std::uint32_t horizon_bins = 4096;  // azimuth resolution of the occlusion horizon over 2*pi
   std::uint32_t quadtree_leaf_size = 8;  // max buildings per quadtree leaf
+  // Guarded ΔH: the motion one carried-over horizon stays valid for (engine/delta_horizon/).
+  double delta_radius = 1.0;  // plan distance from the anchor eye, metres (ε)
+  double delta_height = 0.5;  // vertical distance from the anchor eye, metres
+  double delta_turn = 0.2;    // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
 };
 
 // Names accepted by make_method, in report order.

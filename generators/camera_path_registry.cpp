@@ -2,13 +2,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
+#include "generators/camera_moves.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/params_json.hpp"
 
 namespace cullcheck::generators {
 
 const std::vector<std::string>& camera_path_kinds() {
-  static const std::vector<std::string> kinds = {"street_walk", "fly_through"};
+  static const std::vector<std::string> kinds = {"street_walk", "fly_through", "moves"};
   return kinds;
 }
 
@@ -23,7 +24,8 @@ CameraPath make_camera_path(const std::string& kind, const Scene& scene, std::ui
     overlay_params_json(p, params, "path", kind);
     return fly_through(scene, p, seed);
   }
-  throw InputError("path", "kind", "unknown camera path kind '" + kind + "' (known: street_walk, fly_through)");
+  if (kind == "moves") return moves_path(params);
+  throw InputError("path", "kind", "unknown camera path kind '" + kind + "' (known: street_walk, fly_through, moves)");
 }
 
 }  // namespace cullcheck::generators

@@ -124,6 +124,21 @@ inline rc::Gen<SceneSpec> manhattan_spec() {
                                 }));
 }
 
+// Larger grids where most of the city is hidden from the street (what incremental methods skip):
+// 4-10 x 4-10 blocks of 2-4 lots, 20-50 m blocks, 6-14 m streets, up to 40% thin slabs.
+inline rc::Gen<SceneSpec> occluded_manhattan_spec() {
+  using detail::int_in;
+  return detail::spec_of(
+      "manhattan", rc::gen::map(rc::gen::tuple(int_in(4, 10), int_in(4, 10), int_in(2, 4), int_in(20, 50), int_in(6, 14),
+                                               int_in(0, 40)),
+                                [](const std::tuple<int, int, int, int, int, int>& t) {
+                                  const auto [bx, by, lots, block, street, thin] = t;
+                                  return nlohmann::json{{"blocks_x", bx},        {"blocks_y", by},
+                                                        {"buildings_per_block", lots}, {"block_size", block},
+                                                        {"street_width", street},      {"thin_fraction", thin / 100.0}};
+                                }));
+}
+
 // 3-5 x 3-5 blocks with a one-block plaza and 0-4 kiosks (lower than the eye).
 inline rc::Gen<SceneSpec> plaza_spec() {
   using detail::int_in;

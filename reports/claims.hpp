@@ -41,4 +41,11 @@ nlohmann::json to_json(const ClaimCheck& claim);
 // low and tall buildings) and cameras from street level to above the rooftops.
 std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& options);
 
+// OH(IS), Downs et al.'s horizon built in the view plane (thesis ch. 3.1.1, Fig. 3.3), over the
+// same scenes: street-level and rooftop cameras, each once pitched and/or rolled and once level.
+// Two checks: "downs-oh-is-pitch-roll" (the view-plane horizon stays conservative under pitch and
+// roll; refuted with a replay when the oracle sees a building it culled from a tilted camera) and
+// "downs-oh-is-level-cameras" (conservative for level cameras, its 4-DoF claim; expected to hold).
+std::vector<ClaimCheck> check_image_space_pitch_roll(const ClaimSearchOptions& options);
+
 }  // namespace cullcheck

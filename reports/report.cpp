@@ -26,7 +26,49 @@ nlohmann::json machine_json() {
 
 double ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 
+// Thesis Table 3.2 b): culling-time speed-ups it reports (Pentium IV, its own OH(IS), OH(OS), ΔH).
+struct PublishedSpeedup {
+  const char* numerator;
+  const char* denominator;
+  double culling_time;
+};
+constexpr PublishedSpeedup kTable32[] = {{"oh_is", "oh_os_conservative", 2.34},
+                                         {"oh_is", "delta_h_guarded", 21.54},
+                                         {"oh_os_conservative", "delta_h_guarded", 9.18},
+                                         {"oh_is", "delta_h_thesis", 21.54},
+                                         {"oh_os_conservative", "delta_h_thesis", 9.18},
+                                         {"frustum", "oh_os_conservative", 0.0}};
+
+const MethodRun* find_run(const PathVerification& v, const std::string& method) {
+  for (const MethodRun& r : v.runs)
+    if (r.method == method) return &r;
+  return nullptr;
+}
+
 }  // namespace
+
+nlohmann::json speedups_json(const PathVerification& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const PublishedSpeedup& s : kTable32) {
+    const MethodRun* a = find_run(v, s.numerator);
+    const MethodRun* b = find_run(v, s.denominator);
+    if (!a || !b) continue;
+    auto per_frame = [](const MethodRun& r, std::uint64_t total) {
+      return r.cull_ms.empty() ? 0.0 : static_cast<double>(total) / static_cast<double>(r.cull_ms.size());
+    };
+    nlohmann::json row = {{"faster", s.denominator},
+                          {"than", s.numerator},
+                          {"cull_ms_median_ratio", ratio(median(a->cull_ms), median(b->cull_ms))},
+                          {"cull_ms_p95_ratio", ratio(percentile(a->cull_ms, 95), percentile(b->cull_ms, 95))},
+                          {"cull_ms_mean_ratio", ratio(mean(a->cull_ms), mean(b->cull_ms))},
+                          {"cells_tested_ratio", ratio(per_frame(*a, a->totals.cells_tested), per_frame(*b, b->totals.cells_tested))},
+                          {"horizon_nodes_ratio",
+                           ratio(per_frame(*a, a->totals.horizon_nodes), per_frame(*b, b->totals.horizon_nodes))}};
+    row["thesis_table_3_2_culling_time"] = s.culling_time > 0 ? nlohmann::json(s.culling_time) : nlohmann::json(nullptr);
+    out.push_back(row);
+  }
+  return out;
+}
 
 std::uint64_t conservative_violations(const PathVerification& v) {
   std::uint64_t n = 0;
@@ -90,11 +132,14 @@ nlohmann::json build_report(const ReportInputs& in) {
                     {"buildings_tested_mean", ratio(static_cast<double>(r.totals.buildings_tested), frames)},
                     {"horizon_nodes_mean", ratio(static_cast<double>(r.totals.horizon_nodes), frames)},
                     {"occluders_applied_mean", ratio(static_cast<double>(r.totals.occluders_applied), frames)},
+                    {"items_skipped_mean", ratio(static_cast<double>(r.totals.items_skipped), frames)},
+                    {"guard_fires", r.totals.guard_fires},
                     {"violations", r.violation_count},
                     {"frames_with_violations", r.frames_with_violations},
                     {"violation_replays", violations}});
   }
   report["runs"] = runs;
+  report["speedups"] = speedups_json(v);
   json claims = json::array();
   for (const ClaimCheck& c : in.claims) claims.push_back(to_json(c));
   report["claims"] = claims;

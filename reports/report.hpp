@@ -30,6 +30,10 @@ struct ReportInputs {
 };
 
 nlohmann::json build_report(const ReportInputs& in);
+// Speed-ups measured in the run, as ratios of the same statistic of two methods over the same
+// frames, next to the thesis's Table 3.2 culling-time speed-ups where it has one: OH(IS) vs
+// OH(OS), OH(IS) vs ΔH, OH(OS) vs ΔH (for both ΔH variants), frustum vs OH(OS).
+nlohmann::json speedups_json(const PathVerification& v);
 // The per-method table printed after a run.
 std::string summary_table(const PathVerification& v);
 // Total violations of methods that claim to be conservative (the CI gate's number).

@@ -19,10 +19,30 @@ std::string replay_command(const SceneSource& source, const std::string& method,
   return "cullcheck verify " + source.replay_flags() + " --method " + method + " --camera " + shell_quote(camera_json);
 }
 
+namespace {
+
+// Violations of one method over a set of checked frames: all counted, the first few kept.
+struct ViolationTally {
+  std::uint64_t count = 0;
+  std::size_t frames = 0;  // frames with at least one violation
+  std::vector<Violation> kept;
+};
+
+}  // namespace
+
+// The gate (report.cpp's conservative_violations) counts the violations of the runs whose
+// claims_conservative is set. A method's claim may depend on the camera (claims_conservative_for:
+// OH(IS) claims level cameras only), so a run is held to the gate when its method claims
+// conservativeness for every camera or for at least one checked frame, and then its violations
+// are those of the frames its claim covers; a run whose method claims no checked frame keeps
+// every violation, reported but not gated (e.g. oh_os_thesis, or oh_is along a fly-through).
+// For methods whose claim does not depend on the camera this is the plain count either way.
 PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,
                              const std::vector<std::string>& methods, const MethodOptions& method_options,
                              const VerificationOptions& options) {
   PathVerification out;
+  std::vector<ViolationTally> all_frames(methods.size()), claimed_frames(methods.size());
+  std::vector<std::size_t> frames_claimed(methods.size(), 0);  // checked frames the claim covers
   out.oracle.density = options.oracle.sampling;
   out.oracle.oracle_stride = std::max<std::size_t>(1, options.oracle_stride);
   std::vector<std::unique_ptr<CullingMethod>> engines;
@@ -65,22 +85,35 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       MethodRun& run = out.runs[m];
       run.checked_pvs_size.push_back(static_cast<double>(results[m].pvs.size()));
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
+      const bool claimed = engines[m]->claims_conservative_for(camera);
+      frames_claimed[m] += claimed ? 1 : 0;
       const std::vector<ObjectId> missed = missing_from(answer.visible, results[m].pvs);
       if (missed.empty()) continue;
-      run.violation_count += missed.size();
-      ++run.frames_with_violations;
-      for (ObjectId id : missed) {
-        if (run.violations.size() >= options.max_replays) break;
-        Violation v;
-        v.frame = frame;
-        v.building = id;
-        v.camera = camera;
-        v.model = answer.model;
-        if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
-        v.replay = replay_command(source, run.method, camera);
-        run.violations.push_back(std::move(v));
+      for (ViolationTally* tally : {&all_frames[m], claimed ? &claimed_frames[m] : nullptr}) {
+        if (tally == nullptr) continue;
+        tally->count += missed.size();
+        ++tally->frames;
+        for (ObjectId id : missed) {
+          if (tally->kept.size() >= options.max_replays) break;
+          Violation v;
+          v.frame = frame;
+          v.building = id;
+          v.camera = camera;
+          v.model = answer.model;
+          if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
+          v.replay = replay_command(source, run.method, camera);
+          tally->kept.push_back(std::move(v));
+        }
       }
     }
+  }
+  for (std::size_t m = 0; m < engines.size(); ++m) {
+    MethodRun& run = out.runs[m];
+    run.claims_conservative = run.claims_conservative || frames_claimed[m] > 0;
+    ViolationTally& tally = run.claims_conservative ? claimed_frames[m] : all_frames[m];
+    run.violation_count = tally.count;
+    run.frames_with_violations = tally.frames;
+    run.violations = std::move(tally.kept);
   }
   if (!first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth.rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
   return out;

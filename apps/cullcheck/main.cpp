@@ -16,6 +16,7 @@
 #include "generators/city.hpp"
 #include "oracle/oracle.hpp"
 #include "reports/claims.hpp"
+#include "reports/delta_claims.hpp"
 #include "reports/report.hpp"
 #include "reports/verification.hpp"
 
@@ -246,6 +247,8 @@ int main(int argc, char** argv) {
       in.path_parameters_json = report_path.file.empty() ? report_path.params : "{}";
       in.verification = &v;
       in.claims = cc::check_shadow_elevation_rule(claim_options);
+      for (cc::ClaimCheck& c : cc::check_image_space_pitch_roll(claim_options)) in.claims.push_back(std::move(c));
+      for (cc::ClaimCheck& c : cc::check_delta_horizon_claims(claim_options)) in.claims.push_back(std::move(c));
       nlohmann::json document = cc::build_report(in);
       if (!benchmark_json.empty())
         document["benchmarks"] = PathFlags::parse_json(cc::read_text_file(benchmark_json), "benchmark-json");

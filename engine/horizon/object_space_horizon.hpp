@@ -2,13 +2,8 @@
 //
 // Claim (as published): conservative from a point, 6 DoF, up to 360 degrees.
 //
-// Per query: the horizon starts empty except outside the view volume's azimuth coverage; the
-// quadtree is traversed front to back (best-first on the cells' and buildings' nearest plan
-// distance); a cell or building is culled when it lies outside the view volume or its highest
-// slope over its azimuth span is below min H there. A building that survives is in the PVS and
-// its CVPs' shadows are merged into H. A shadow is merged only once the sweep has passed the
-// CVP's farthest point (Downs et al.'s rule, "update OH at its maximum distance"), so whatever
-// is tested against H lies wholly behind every shadow in H. A CVP that may reach in front of the
+// Per query, one front-to-back sweep of the quadtree against the horizon (horizon_sweep.hpp says
+// how, and what the PVS is independent of traversal order). A CVP that may reach in front of the
 // near plane is not used as an occluder: the clipped part hides nothing.
 //
 // The shadow of a CVP is one elevation over its azimuth span (ch. 3.1.2, Fig. 3.4). Which
@@ -25,14 +20,13 @@
 
 #include <memory>
 
+#include "engine/horizon/horizon_sweep.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/horizon/polar_geometry.hpp"
 #include "engine/method.hpp"
 #include "engine/spatial/quadtree.hpp"
 
 namespace cullcheck {
-
-enum class ShadowRule { thesis, conservative };
 
 class ObjectSpaceHorizonCulling final : public CullingMethod {
  public:

@@ -1,5 +1,6 @@
 #include "engine/horizon/occlusion_horizon.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -82,6 +83,24 @@ double OcclusionHorizon::min_over(const AzimuthSpan& span) {
 bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) { return max_slope < min_over(span); }
 
 double OcclusionHorizon::bin_value(std::uint32_t bin) { return min_bins(bin, bin); }
+
+std::vector<double> OcclusionHorizon::bin_values() {
+  for (std::uint32_t node = 1; node < bins_; ++node) push_down(node);
+  visits_ += bins_;
+  return {min_.begin() + bins_, min_.end()};
+}
+
+void OcclusionHorizon::assign(const std::vector<double>& values) {
+  if (values.size() != bins_) throw std::invalid_argument("assign: expected " + std::to_string(bins_) + " bin values");
+  std::copy(values.begin(), values.end(), min_.begin() + bins_);
+  std::copy(values.begin(), values.end(), max_.begin() + bins_);
+  std::fill(pending_.begin(), pending_.end(), kNone);
+  for (std::uint32_t node = bins_ - 1; node >= 1; --node) {
+    min_[node] = std::min(min_[2 * node], min_[2 * node + 1]);
+    max_[node] = std::max(max_[2 * node], max_[2 * node + 1]);
+  }
+  visits_ += bins_;
+}
 
 std::uint64_t OcclusionHorizon::take_node_visits() {
   const std::uint64_t v = visits_;

@@ -54,6 +54,10 @@ class OcclusionHorizon {
   double bin_width() const { return bin_width_; }
   // Current value of one bin (pushes pending raises down; for tests and reports).
   double bin_value(std::uint32_t bin);
+  // Every bin's value in order, and the reverse: set every bin and rebuild the tree; both O(bins).
+  // (ΔH compares and combines whole horizons bin by bin: the thesis's linked list of pieces.)
+  std::vector<double> bin_values();
+  void assign(const std::vector<double>& values);
   // Segment-tree nodes visited since construction or the last call to take_node_visits().
   std::uint64_t take_node_visits();
   // Structure invariant: every node's min/max equals the min/max over its children (after

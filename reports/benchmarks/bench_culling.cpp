@@ -1,10 +1,14 @@
-// Google Benchmark drivers (issue: OH(OS) along the street walk on the 160,000-building city,
-// and generation time). Each benchmark repeats five times and reports the median; compare
-// methods as ratios of medians from one run, never across runs or machines.
+// Google Benchmark drivers: generation time; thesis Table 3.2 (OH(IS), OH(OS), ΔH culling time
+// along a 1,000-frame street walk on the 160,000-building city); and how each method's cost grows
+// with the city (10k, 40k, 160k, 640k buildings). Each benchmark repeats five times and reports
+// the median; compare methods as ratios of medians from one run, never across runs or machines.
+// ΔH methods keep state from frame to frame, so one iteration is the next frame of the walk.
 //
 //   build/reports/benchmarks/bench_culling --benchmark_format=json > bench.json
 #include <benchmark/benchmark.h>
 
+#include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "engine/method.hpp"
@@ -60,26 +64,77 @@ void BM_CullThesisStreetWalk(benchmark::State& state, const std::string& method_
   const CameraPath& path = thesis_walk();
   auto method = make_method(method_name, scene);
   std::size_t frame = 0;
-  double pvs = 0, cells = 0, nodes = 0, frames = 0;
+  double pvs = 0, cells = 0, nodes = 0, fires = 0, frames = 0;
   for (auto _ : state) {
     const CullResult r = method->cull(path.frames[frame]);
     benchmark::DoNotOptimize(r.pvs.data());
     pvs += static_cast<double>(r.pvs.size());
     cells += static_cast<double>(r.stats.cells_tested);
     nodes += static_cast<double>(r.stats.horizon_nodes);
+    fires += static_cast<double>(r.stats.guard_fires);
     frames += 1;
     frame = (frame + 1) % path.frames.size();
   }
   state.counters["pvs_per_frame"] = pvs / frames;
   state.counters["cells_tested_per_frame"] = cells / frames;
   state.counters["horizon_nodes_per_frame"] = nodes / frames;
+  state.counters["guard_fires_per_frame"] = fires / frames;
 }
+BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, oh_is, std::string("oh_is"))
+    ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, frustum, std::string("frustum"))
     ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, oh_os_conservative, std::string("oh_os_conservative"))
     ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, oh_os_thesis, std::string("oh_os_thesis"))
     ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, delta_h_thesis, std::string("delta_h_thesis"))
+    ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, delta_h_guarded, std::string("delta_h_guarded"))
+    ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
+
+// Cost against city size: the thesis layout with grid x grid buildings (100: 10k, 200: 40k,
+// 400: 160k, 800: 640k) and a 1,000-frame street walk through it; one iteration culls one frame.
+struct SizedCity {
+  Scene scene;
+  CameraPath walk;
+};
+const SizedCity& sized_city(int grid) {
+  static std::map<int, std::unique_ptr<SizedCity>> cities;
+  auto& c = cities[grid];
+  if (!c) {
+    c = std::make_unique<SizedCity>();
+    c->scene = generators::make_city("thesis", 1, {{"grid_x", grid}, {"grid_y", grid}});
+    c->walk = generators::make_camera_path("street_walk", c->scene, 1, {{"frames", 1000}});
+  }
+  return *c;
+}
+
+void BM_CullByCitySize(benchmark::State& state, const std::string& method_name) {
+  const SizedCity& city = sized_city(static_cast<int>(state.range(0)));
+  auto method = make_method(method_name, city.scene);
+  std::size_t frame = 0;
+  double cells = 0, nodes = 0, frames = 0;
+  for (auto _ : state) {
+    const CullResult r = method->cull(city.walk.frames[frame]);
+    benchmark::DoNotOptimize(r.pvs.data());
+    cells += static_cast<double>(r.stats.cells_tested);
+    nodes += static_cast<double>(r.stats.horizon_nodes);
+    frames += 1;
+    frame = (frame + 1) % city.walk.frames.size();
+  }
+  state.counters["buildings"] = static_cast<double>(city.scene.buildings.size());
+  state.counters["cells_tested_per_frame"] = cells / frames;
+  state.counters["horizon_nodes_per_frame"] = nodes / frames;
+}
+#define CULLCHECK_SIZE_BENCH(method)                                                             \
+  BENCHMARK_CAPTURE(BM_CullByCitySize, method, std::string(#method))                             \
+      ->Arg(100)->Arg(200)->Arg(400)->Arg(800)->Unit(benchmark::kMicrosecond)->MinTime(0.5)       \
+      ->Repetitions(3)->ReportAggregatesOnly(true)
+CULLCHECK_SIZE_BENCH(frustum);
+CULLCHECK_SIZE_BENCH(oh_is);
+CULLCHECK_SIZE_BENCH(oh_os_conservative);
+CULLCHECK_SIZE_BENCH(delta_h_guarded);
 
 }  // namespace
 }  // namespace cullcheck

@@ -1,0 +1,205 @@
+// The front-to-back sweep shared by OH(OS) and the guarded ΔH method (thesis ch. 3.1.1-3.1.2).
+//
+// One query: the horizon starts empty except outside the view volume's azimuth coverage; the
+// quadtree is traversed best-first on the cells' and buildings' nearest plan distance; a cell or
+// building is culled when it lies outside the view volume or its highest slope over its azimuth
+// span is below min H there. A building that survives is in the PVS and its CVPs' shadows wait
+// in a ShadowQueue until the sweep has passed the CVP's farthest point (Downs et al.'s "update
+// OH at its maximum distance"), so whatever is tested against H lies wholly behind every shadow
+// in H. When the sweep ends, the shadows still waiting are merged too, so the final horizon is
+// the maximum over every visible building's shadows: a well-defined H(t) for ΔH to carry over.
+//
+// What the PVS is, independent of traversal order (ΔH's exactness argument rests on it): a
+// building b is in the PVS iff its box meets the view volume and neither its box nor all of its
+// CVPs are hidden by H_<d(b) = the maximum of the shadows of PVS members whose CVP's farthest
+// point is nearer than b's nearest point d(b). A hidden building's shadows would change nothing
+// (its shadow is never above the horizon that hid it), so skipping a building that is known to
+// be hidden — without testing it — gives the same PVS and the same horizon.
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <queue>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "core/scene.hpp"
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/horizon/polar_geometry.hpp"
+#include "engine/method.hpp"
+#include "engine/spatial/quadtree.hpp"
+
+namespace cullcheck {
+
+// Which elevation a CVP's shadow gets (see object_space_horizon.hpp).
+enum class ShadowRule { thesis, conservative };
+
+// Slope of a CVP's shadow under `rule`, given its span seen from the eye.
+double shadow_slope(ShadowRule rule, const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span);
+
+// Geometry nearer than the near plane is clipped and hides nothing. A point of the view volume
+// lies at least `near` deep, so at least near / cos(corner angle) from the eye; a CVP whose plan
+// distance is below this may be partly clipped and is not used as an occluder.
+double unclipped_distance(const Camera& camera);
+
+// Shadows waiting until the sweep passes their CVP's farthest point; merged in that order.
+class ShadowQueue {
+ public:
+  void clear() {
+    queue_ = {};
+    order_ = 0;
+  }
+  void push(double farthest, const AzimuthSpan& span, double slope) { queue_.push({farthest, span, slope, order_++}); }
+  // Merges every shadow whose farthest point is nearer than `distance` (strictly) into `horizon`
+  // and, when given, into `also` (ΔH raises H(t+1) and its mask together).
+  void merge_nearer_than(double distance, OcclusionHorizon& horizon, CullStatistics& stats,
+                         OcclusionHorizon* also = nullptr) {
+    while (!queue_.empty() && queue_.top().farthest < distance) {
+      horizon.raise(queue_.top().span, queue_.top().slope);
+      if (also) also->raise(queue_.top().span, queue_.top().slope);
+      ++stats.occluders_applied;
+      queue_.pop();
+    }
+  }
+  void merge_all(OcclusionHorizon& horizon, CullStatistics& stats, OcclusionHorizon* also = nullptr) {
+    merge_nearer_than(HUGE_VAL, horizon, stats, also);
+  }
+
+ private:
+  struct Pending {
+    double farthest;
+    AzimuthSpan span;
+    double slope;
+    std::uint64_t order;  // insertion order, for a deterministic tie-break
+    bool operator>(const Pending& o) const { return farthest != o.farthest ? farthest > o.farthest : order > o.order; }
+  };
+  std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> queue_;
+  std::uint64_t order_ = 0;
+};
+
+// One entry of the front-to-back sweep: a quadtree cell or a building, keyed by its nearest plan
+// distance; ties broken by kind and index so that the order is deterministic.
+struct SweepItem {
+  double distance;
+  bool is_building;
+  std::uint32_t index;  // cell index, or scene building index
+  bool operator>(const SweepItem& o) const {
+    if (distance != o.distance) return distance > o.distance;
+    if (is_building != o.is_building) return is_building > o.is_building;
+    return index > o.index;
+  }
+};
+
+// OH(OS)'s tests, shared by every sweep that uses them:
+// a box (cell or building bounds, standing on the ground up to `top`) is hidden when its highest
+// slope lies below the horizon over its azimuth span; a box that contains the eye is not.
+inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, Vec3 eye) {
+  const Vec2 e = plan(eye);
+  const auto span = box_span(box, e);
+  if (!span) return false;
+  return horizon.hides(span->span, max_slope(top, eye.z, min_distance(e, box), max_distance(e, box)));
+}
+// A building whose box is not hidden is visible unless every CVP is hidden; `spans` receives
+// each CVP's span for its shadows.
+inline bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
+                           std::vector<std::optional<ConvexSpan>>& spans) {
+  const Vec2 e = plan(eye);
+  spans.clear();
+  bool visible = false;
+  for (const ConvexVerticalPrism& prism : building.prisms) {
+    spans.push_back(convex_span(prism.ring, e));
+    const auto& span = spans.back();
+    visible = visible || !span ||
+              !horizon.hides(span->span, max_slope(prism.height, eye.z, min_boundary_distance(prism.ring, e),
+                                                   max_vertex_distance(prism.ring, e)));
+  }
+  return visible;
+}
+// Queues a visible building's shadows. `distance` is its nearest plan distance; a CVP that may
+// reach in front of the near plane, or that holds the eye (no span), casts none.
+inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
+                          double unclipped, const std::vector<std::optional<ConvexSpan>>& spans) {
+  const Vec2 e = plan(eye);
+  const bool may_be_clipped = distance < unclipped;
+  for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+    const ConvexVerticalPrism& prism = building.prisms[p];
+    if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
+    pending.push(max_vertex_distance(prism.ring, e), spans[p]->span, shadow_slope(rule, prism, eye, *spans[p]));
+  }
+}
+
+// Skips nothing: plain OH(OS).
+struct NoSkip {
+  bool cell(std::uint32_t) const { return false; }
+  bool building(std::uint32_t) const { return false; }
+};
+
+// Runs one query into `result` (PVS unsorted, statistics without cull_ms). `skip` is asked before
+// a cell or building enters the sweep; it may only skip what the sweep would have culled.
+// Returns the number of items skipped.
+template <class Skip>
+std::uint64_t sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, ShadowRule rule,
+                            const Camera& camera, const Skip& skip, CullResult& result) {
+  CullStatistics& stats = result.stats;
+  const ViewVolume volume(camera);
+  const Vec3 eye = camera.position;
+  const Vec2 e = plan(eye);
+  const double unclipped = unclipped_distance(camera);
+  horizon.reset();
+  horizon.restrict_to(azimuth_coverage(camera));
+  horizon.take_node_visits();
+
+  std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
+  ShadowQueue pending;
+  std::uint64_t skipped = 0;
+  std::vector<std::optional<ConvexSpan>> spans;
+  const auto& cells = quadtree.cells();
+  const auto& order = quadtree.buildings();
+  auto push_cell = [&](std::uint32_t c) {
+    if (cells[c].last <= cells[c].first) return;
+    if (skip.cell(c)) {
+      ++skipped;
+      return;
+    }
+    sweep.push({min_distance(e, cells[c].bounds), false, c});
+  };
+  if (!cells.empty()) push_cell(0);
+
+  while (!sweep.empty()) {
+    const SweepItem item = sweep.top();
+    sweep.pop();
+    pending.merge_nearer_than(item.distance, horizon, stats);
+    if (!item.is_building) {
+      const Quadtree::Cell& cell = cells[item.index];
+      ++stats.cells_tested;
+      const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
+      if (!volume.may_intersect(box) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
+      if (cell.leaf()) {
+        for (std::uint32_t i = cell.first; i < cell.last; ++i) {
+          if (skip.building(order[i])) {
+            ++skipped;
+            continue;
+          }
+          sweep.push({min_distance(e, scene.buildings[order[i]].bounds.plan()), true, order[i]});
+        }
+      } else {
+        for (std::uint32_t c = cell.first_child; c < cell.first_child + 4; ++c) push_cell(c);
+      }
+      continue;
+    }
+    const Building& building = scene.buildings[item.index];
+    ++stats.buildings_tested;
+    if (!volume.may_intersect(building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
+        !prisms_visible(horizon, building, eye, spans))
+      continue;
+    result.pvs.push_back(building.id);
+    queue_shadows(pending, rule, building, eye, item.distance, unclipped, spans);
+  }
+  pending.merge_all(horizon, stats);
+  stats.horizon_nodes = horizon.take_node_visits();
+  return skipped;
+}
+
+}  // namespace cullcheck
