@@ -37,7 +37,9 @@ constexpr double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z;
 constexpr Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(Vec2 a) { return std::hypot(a.x, a.y); }
+// sqrt is correctly rounded everywhere (hypot's accuracy and speed vary by maths library), and
+// squares overflow only beyond 1e154 m.
+inline double length(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalized(Vec3 a) { return a * (1.0 / length(a)); }
 constexpr Vec2 plan(Vec3 a) { return {a.x, a.y}; }
@@ -78,12 +80,12 @@ struct Box3 {
 inline double min_distance(Vec2 p, const Box2& b) {
   const double dx = std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x});
   const double dy = std::max({b.lo.y - p.y, 0.0, p.y - b.hi.y});
-  return std::hypot(dx, dy);
+  return std::sqrt(dx * dx + dy * dy);
 }
 inline double max_distance(Vec2 p, const Box2& b) {
   const double dx = std::max(std::abs(p.x - b.lo.x), std::abs(p.x - b.hi.x));
   const double dy = std::max(std::abs(p.y - b.lo.y), std::abs(p.y - b.hi.y));
-  return std::hypot(dx, dy);
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 }  // namespace cullcheck

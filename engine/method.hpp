@@ -41,6 +41,9 @@ class CullingMethod {
   // Whether that claim covers this camera. Methods whose claim depends on the camera (OH(IS):
   // level cameras only) override it; the CI gate counts a frame's violations only when it is true.
   virtual bool claims_conservative_for(const Camera& /*camera*/) const { return claims_conservative(); }
+  // True when a result depends on earlier queries (ΔH carries its horizon from frame to frame):
+  // such a method's failure replays only along the path that led to it.
+  virtual bool incremental() const { return false; }
   virtual CullResult cull(const Camera& camera) = 0;
 };
 
@@ -50,7 +53,7 @@ struct MethodOptions {
   // Guarded ΔH: the motion one carried-over horizon stays valid for (engine/delta_horizon/).
   double delta_radius = 1.0;  // plan distance from the anchor eye, metres (ε)
   double delta_height = 0.5;  // vertical distance from the anchor eye, metres
-  double delta_turn = 0.2;    // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
+  double delta_turn = 0.05;   // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
 };
 
 // Names accepted by make_method, in report order.

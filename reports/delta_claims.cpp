@@ -60,13 +60,17 @@ std::string replay(const SceneSource& scene, const nlohmann::json& params, const
 
 std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  ClaimCheck published{"thesis-3.1.3-delta-h-lateral", "thesis ch. 3.1.3 (steps 1-5), Fig. 3.10",
-                       "ΔH as published (skip what lies behind the parts of the horizon that rose since the last frame) "
-                       "culls nothing visible along a walk",
-                       "delta_h_thesis"};
-  ClaimCheck guarded{"delta-h-guarded-equals-oh-os", "cullcheck (guard for thesis ch. 3.1.3 / Fig. 3.10)",
-                     "the guarded ΔH gives the PVS of full OH(OS) at every frame of the same paths",
-                     "delta_h_guarded"};
+  ClaimCheck published, guarded;
+  published.id = "thesis-3.1.3-delta-h-lateral";
+  published.source = "thesis ch. 3.1.3 (steps 1-5), Fig. 3.10";
+  published.statement =
+      "ΔH as published (skip what lies behind the parts of the horizon that rose since the last frame) culls nothing "
+      "visible along a walk";
+  published.method = "delta_h_thesis";
+  guarded.id = "delta-h-guarded-equals-oh-os";
+  guarded.source = "cullcheck (guard for thesis ch. 3.1.3 / Fig. 3.10)";
+  guarded.statement = "the guarded ΔH gives the PVS of full OH(OS) at every frame of the same paths";
+  guarded.method = "delta_h_guarded";
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
   for (int index = 0; index < options.scenes; ++index) {

@@ -134,6 +134,9 @@ nlohmann::json build_report(const ReportInputs& in) {
                     {"occluders_applied_mean", ratio(static_cast<double>(r.totals.occluders_applied), frames)},
                     {"items_skipped_mean", ratio(static_cast<double>(r.totals.items_skipped), frames)},
                     {"guard_fires", r.totals.guard_fires},
+                    {"guard_fire_rate", ratio(static_cast<double>(r.totals.guard_fires), frames)},
+                    {"frames_pvs_differs_from_oh_os",
+                     r.compared_with_reference ? nlohmann::json(r.frames_differing_from_reference) : nlohmann::json(nullptr)},
                     {"violations", r.violation_count},
                     {"frames_with_violations", r.frames_with_violations},
                     {"violation_replays", violations}});
@@ -160,6 +163,14 @@ std::string summary_table(const PathVerification& v) {
                   r.cull_ms.size(), median(r.cull_ms), percentile(r.cull_ms, 95), mean(r.pvs_size), witnessed,
                   ratio(mean(r.checked_pvs_size), witnessed), static_cast<unsigned long long>(r.violation_count),
                   r.claims_conservative ? "" : " (not claimed conservative)");
+    out += line;
+  }
+  // Incremental methods: how often their PVS matched the reference's, and how often the guard fired.
+  for (const MethodRun& r : v.runs) {
+    if (!r.compared_with_reference || r.method == "oh_os_conservative" || r.method.rfind("delta_h", 0) != 0) continue;
+    std::snprintf(line, sizeof line, "%s: PVS equals oh_os_conservative's at %zu of %zu frames; guard fired %llu times\n",
+                  r.method.c_str(), r.cull_ms.size() - r.frames_differing_from_reference, r.cull_ms.size(),
+                  static_cast<unsigned long long>(r.totals.guard_fires));
     out += line;
   }
   return out;

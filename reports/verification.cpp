@@ -53,6 +53,8 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     run.claims_conservative = engines.back()->claims_conservative();
     out.runs.push_back(std::move(run));
   }
+  const std::size_t reference =
+      static_cast<std::size_t>(std::find(methods.begin(), methods.end(), options.reference_method) - methods.begin());
   const oracle::Oracle truth(scene);
   oracle::RayLog first_log;
   for (std::size_t frame = 0; frame < path.frames.size(); ++frame) {
@@ -68,7 +70,14 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.totals.buildings_tested += s.buildings_tested;
       run.totals.horizon_nodes += s.horizon_nodes;
       run.totals.occluders_applied += s.occluders_applied;
+      run.totals.items_skipped += s.items_skipped;
+      run.totals.guard_fires += s.guard_fires;
     }
+    if (reference < engines.size())
+      for (std::size_t m = 0; m < engines.size(); ++m) {
+        out.runs[m].compared_with_reference = true;
+        out.runs[m].frames_differing_from_reference += results[m].pvs != results[reference].pvs ? 1 : 0;
+      }
     if (frame % out.oracle.oracle_stride != 0) continue;
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
     const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, first_log.rays.empty() ? &first_log : nullptr);
@@ -101,7 +110,10 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
           v.camera = camera;
           v.model = answer.model;
           if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
-          v.replay = replay_command(source, run.method, camera);
+          v.replay = engines[m]->incremental() && !options.path_replay_flags.empty()
+                         ? "cullcheck verify " + source.replay_flags() + " " + options.path_replay_flags + " --method " +
+                               run.method + "   # violation at frame " + std::to_string(frame)
+                         : replay_command(source, run.method, camera);
           tally->kept.push_back(std::move(v));
         }
       }

@@ -18,6 +18,12 @@ struct VerificationOptions {
   oracle::OracleOptions oracle;
   std::size_t oracle_stride = 1;  // check every n-th frame with the oracle (timings use all)
   std::size_t max_replays = 5;    // violations kept in full per method (all are counted)
+  // Command-line flags that rebuild the path (e.g. "--path-kind street_walk --path-seed 1
+  // --path-params '{...}'"): an incremental method's violation replays along the whole path.
+  std::string path_replay_flags;
+  // Every run's PVS is compared with this method's at every frame (when it is in the run):
+  // ΔH's claim is to give exactly OH(OS)'s PVS.
+  std::string reference_method = "oh_os_conservative";
 };
 
 struct Violation {
@@ -40,6 +46,8 @@ struct MethodRun {
   std::uint64_t violation_count = 0;
   std::size_t frames_with_violations = 0;
   std::vector<Violation> violations;    // the first max_replays
+  bool compared_with_reference = false;
+  std::size_t frames_differing_from_reference = 0;  // frames whose PVS differs from the reference's
 };
 
 struct OracleSummary {

@@ -17,6 +17,7 @@
 #include "oracle/oracle.hpp"
 #include "reports/claims.hpp"
 #include "reports/delta_claims.hpp"
+#include "reports/scaling.hpp"
 #include "reports/report.hpp"
 #include "reports/verification.hpp"
 
@@ -47,10 +48,15 @@ struct PathFlags {
   std::string file;
   void add(CLI::App& app, int default_frames) {
     params = nlohmann::json{{"frames", default_frames}}.dump();
-    app.add_option("--path-kind", kind, "Camera path generator (street_walk, fly_through)")->capture_default_str();
+    app.add_option("--path-kind", kind, "Camera path generator (street_walk, fly_through, moves)")->capture_default_str();
     app.add_option("--path-seed", seed, "Camera path seed")->capture_default_str();
     app.add_option("--path-params", params, "Camera path parameters as JSON")->capture_default_str();
     app.add_option("--path", file, "Read the camera path from this JSON file instead");
+  }
+  // The flags that rebuild this path, for replay commands.
+  std::string replay_flags() const {
+    if (!file.empty()) return "--path " + cc::shell_quote(file);
+    return "--path-kind " + kind + " --path-seed " + std::to_string(seed) + " --path-params " + cc::shell_quote(params);
   }
   cc::CameraPath load(const cc::Scene& scene) const {
     if (!file.empty()) return cc::path_from_json_text(cc::read_text_file(file));
@@ -161,6 +167,16 @@ int main(int argc, char** argv) {
   report->add_option("--oracle-stride", oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
   report->add_option("--claim-scenes", claim_options.scenes, "Scenes searched per claim")->capture_default_str();
   report->add_option("--claim-seed", claim_options.seed, "Seed of the claim search")->capture_default_str();
+  std::vector<int> scaling_grids;
+  int scaling_frames = 1000;
+  report->add_option("--scaling-grids", scaling_grids,
+                     "Also time the methods on thesis-layout cities of grid x grid buildings (e.g. 100,200,400,800: "
+                     "10k to 640k) along a street walk, into report.json's \"scaling\"")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 4000));
+  report->add_option("--scaling-frames", scaling_frames, "Street-walk frames per city size for --scaling-grids")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   report->add_option("--benchmark-json", benchmark_json,
                      "Fold this Google Benchmark JSON output (bench_culling --benchmark_format=json) into the report");
 
@@ -221,6 +237,7 @@ int main(int argc, char** argv) {
       cc::VerificationOptions options;
       options.oracle.sampling = verify_sampling.sampling;
       options.max_replays = 10;
+      if (verify_camera.empty()) options.path_replay_flags = verify_path.replay_flags();
       const cc::PathVerification v = cc::verify_path(scene, verify_scene.source, path, methods, {}, options);
       std::cout << cc::summary_table(v);
       for (const cc::MethodRun& r : v.runs)
@@ -235,6 +252,7 @@ int main(int argc, char** argv) {
       cc::VerificationOptions options;
       options.oracle.sampling = report_sampling.sampling;
       options.oracle_stride = oracle_stride;
+      options.path_replay_flags = report_path.replay_flags();
       const std::vector<std::string> methods = parse_methods(report_methods);
       std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
                 << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
@@ -250,6 +268,13 @@ int main(int argc, char** argv) {
       for (cc::ClaimCheck& c : cc::check_image_space_pitch_roll(claim_options)) in.claims.push_back(std::move(c));
       for (cc::ClaimCheck& c : cc::check_delta_horizon_claims(claim_options)) in.claims.push_back(std::move(c));
       nlohmann::json document = cc::build_report(in);
+      if (!scaling_grids.empty()) {
+        cc::ScalingOptions scaling;
+        scaling.grids = scaling_grids;
+        scaling.frames = scaling_frames;
+        document["scaling"] = cc::run_scaling(scaling);
+        std::cout << cc::scaling_table(document["scaling"]);
+      }
       if (!benchmark_json.empty())
         document["benchmarks"] = PathFlags::parse_json(cc::read_text_file(benchmark_json), "benchmark-json");
       cc::write_text_file_atomically(report_output, document.dump(2) + "\n");

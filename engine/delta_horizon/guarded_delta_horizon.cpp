@@ -6,39 +6,88 @@
 #include "engine/horizon/horizon_sweep.hpp"
 
 namespace cullcheck {
-namespace {
-
-struct SkipHidden {
-  const HiddenCertificate& certificate;
-  bool cell(std::uint32_t c) const { return certificate.cell_hidden(c); }
-  bool building(std::uint32_t b) const { return certificate.building_hidden(b); }
-};
-
-}  // namespace
 
 GuardedDeltaHorizonCulling::GuardedDeltaHorizonCulling(const Scene& scene, const MethodOptions& options)
     : scene_(scene),
       options_(options),
       quadtree_(scene, options.quadtree_leaf_size),
       horizon_(options.horizon_bins),
-      shrunk_(options.horizon_bins),
-      certificate_(scene, quadtree_) {}
+      final_(options.horizon_bins),
+      certificate_(scene, quadtree_, options.horizon_bins) {}
 
 CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
+  CullStatistics& stats = result.stats;
   if (!region_ || !region_->contains(camera)) {
     region_ = MotionRegion{camera, options_.delta_radius, options_.delta_height, options_.delta_turn};
-    certificate_.certify(*region_, shrunk_, result.stats);
-    result.stats.guard_fires = 1;
+    certificate_.certify(*region_, stats);
+    stats.guard_fires = 1;
+    order_.clear();
+    for (std::uint32_t b : certificate_.swept()) order_.push_back({0.0, b});
   }
-  const std::uint64_t nodes = result.stats.horizon_nodes;
-  result.stats.items_skipped = sweep_horizon(scene_, quadtree_, horizon_, ShadowRule::conservative, camera,
-                                             SkipHidden{certificate_}, result);
-  result.stats.horizon_nodes += nodes;
+  const ViewVolume volume(camera);
+  const Vec3 eye = camera.position;
+  const Vec2 e = plan(eye);
+  const double unclipped = unclipped_distance(camera);
+
+  // The swept buildings front to back (from the last frame's order, so nearly sorted).
+  for (auto& [distance, b] : order_) distance = min_distance(e, scene_.buildings[b].bounds.plan());
+  std::sort(order_.begin(), order_.end());
+
+  horizon_.reset();
+  horizon_.restrict_to(azimuth_coverage(camera));
+  horizon_.take_node_visits();
+  ShadowQueue pending;
+  std::vector<std::optional<ConvexSpan>> spans;
+  std::vector<std::uint32_t> found;  // uncertain buildings found visible
+  for (const auto& [distance, b] : order_) {
+    pending.merge_nearer_than(distance, horizon_, stats);
+    const Building& building = scene_.buildings[b];
+    if (certificate_.certainly_visible(b)) {
+      spans.clear();
+      for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
+    } else {
+      ++stats.buildings_tested;
+      if (!volume.may_intersect(building.bounds) || box_hidden(horizon_, building.bounds.plan(), building.height, eye) ||
+          !prisms_visible(horizon_, building, eye, spans))
+        continue;
+      found.push_back(b);
+    }
+    queue_shadows(pending, ShadowRule::conservative, building, eye, distance, unclipped, spans);
+  }
+  stats.horizon_nodes += horizon_.take_node_visits();
+  stats.items_skipped = certificate_.visible().size() + certificate_.hidden_count();
+
+  last_pvs_ = certificate_.visible();
+  last_pvs_.insert(last_pvs_.end(), found.begin(), found.end());
+  result.pvs.reserve(last_pvs_.size());
+  for (std::uint32_t b : last_pvs_) result.pvs.push_back(scene_.buildings[b].id);
   std::sort(result.pvs.begin(), result.pvs.end());
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  last_camera_ = camera;
+  stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+OcclusionHorizon& GuardedDeltaHorizonCulling::horizon() {
+  final_.reset();
+  if (!last_camera_) return final_;
+  const Camera& camera = *last_camera_;
+  final_.restrict_to(azimuth_coverage(camera));
+  const Vec3 eye = camera.position;
+  const Vec2 e = plan(eye);
+  const double unclipped = unclipped_distance(camera);
+  ShadowQueue shadows;
+  CullStatistics unused;
+  std::vector<std::optional<ConvexSpan>> spans;
+  for (std::uint32_t b : last_pvs_) {
+    const Building& building = scene_.buildings[b];
+    spans.clear();
+    for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
+    queue_shadows(shadows, ShadowRule::conservative, building, eye, min_distance(e, building.bounds.plan()), unclipped, spans);
+  }
+  shadows.merge_all(final_, unused);
+  return final_;
 }
 
 }  // namespace cullcheck

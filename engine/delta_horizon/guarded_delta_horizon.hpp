@@ -1,18 +1,23 @@
 // Guarded incremental occlusion horizon, ΔH (thesis ch. 3.1.3, with the guard that Fig. 3.10
 // calls for; see motion_region.hpp for the guard and why the published method needs one).
 //
-// Claim: from a point, 6 DoF, up to 360 degrees, the same PVS and the same final horizon as full
-// OH(OS) with the conservative shadow rule, at every frame, whatever the camera path; so it is
-// conservative wherever OH(OS) is. Frame-to-frame coherence is used as follows:
-//  - H(t) carried over: a horizon of occluder shadows shrunk for a motion region around an
-//    anchor camera marks the cells and buildings hidden from every camera of that region;
-//  - each frame inside the region builds H(t+1) front to back exactly as OH(OS) does, but never
-//    tests a marked item (the steps "skip what lies behind the risen parts" and "test only the
-//    cells in the openings", with the skip proven rather than assumed);
+// Claim: from a point, 6 DoF, up to 360 degrees, the same PVS as full OH(OS) with the
+// conservative shadow rule at every frame, whatever the camera path; so it is conservative
+// wherever OH(OS) is. Frame-to-frame coherence is used as follows:
+//  - carried over from an anchor frame: a certificate for every camera within a motion region
+//    around the anchor, sorting the buildings into certainly hidden, certainly visible and
+//    uncertain (the thesis's "skip what lies behind the risen parts" and "test the openings",
+//    with both proven for the whole region rather than assumed from one frame to the next);
+//  - each frame inside the region rebuilds H(t+1) front to back from the uncertain buildings
+//    and the certainly visible ones whose shadows can reach them, with OH(OS)'s tests; the PVS
+//    is the certainly visible plus the uncertain ones found visible;
 //  - a camera outside the region (moved more than `delta_radius`/`delta_height`, turned more
 //    than `delta_turn`, other field of view or clip planes) re-anchors the region at itself:
 //    the guard fires, and the frame costs a certificate sweep on top of its own.
-// Statistics: items_skipped counts marked items not tested; guard_fires is 1 on re-anchoring.
+// horizon() materialises the horizon OH(OS) would leave (every visible building's shadows) on
+// demand; the per-frame sweep only builds it where uncertain buildings need it.
+// Statistics: items_skipped counts buildings decided without a test; guard_fires is 1 on
+// re-anchoring.
 #pragma once
 
 #include <optional>
@@ -29,19 +34,23 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
   GuardedDeltaHorizonCulling(const Scene& scene, const MethodOptions& options = {});
   std::string name() const override { return "delta_h_guarded"; }
   bool claims_conservative() const override { return true; }
+  bool incremental() const override { return true; }
   CullResult cull(const Camera& camera) override;
 
-  // The horizon H(t) as left by the last query (every visible building's shadows merged).
-  OcclusionHorizon& horizon() { return horizon_; }
-  const HiddenCertificate& certificate() const { return certificate_; }
+  // H(t) as OH(OS) would leave it after the last query (built on demand).
+  OcclusionHorizon& horizon();
+  const RegionCertificate& certificate() const { return certificate_; }
 
  private:
   const Scene& scene_;
   MethodOptions options_;
   Quadtree quadtree_;
-  OcclusionHorizon horizon_, shrunk_;
-  HiddenCertificate certificate_;
+  OcclusionHorizon horizon_, final_;
+  RegionCertificate certificate_;
   std::optional<MotionRegion> region_;
+  std::optional<Camera> last_camera_;
+  std::vector<std::uint32_t> last_pvs_;  // scene indices
+  std::vector<std::pair<double, std::uint32_t>> order_;  // swept buildings by distance
 };
 
 }  // namespace cullcheck

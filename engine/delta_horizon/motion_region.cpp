@@ -23,15 +23,31 @@ double azimuth_shift(double radius, double distance) {
   return std::asin(std::min(1.0, radius / distance)) + kAngleMargin;
 }
 
-// A box certainly meets the view volume of every camera of the region: for each plane of the
-// anchor's volume, the corner that lies deepest inside stays inside when the plane's normal
-// turns by at most `turn` (|Δn| <= turn) and the eye moves by at most `reach`:
-//   n'.(c - e') - k >= n.(c - a) - k - turn |c - a| - reach.
-// Then OH(OS) at any camera of the region tests the box's building instead of culling it by the
-// view volume, so its shadows (or a horizon that already hides them) are there.
+AzimuthSpan widened(const AzimuthSpan& s, double by) {
+  if (s.end - s.begin + 2 * by >= kTwoPi) return {0.0, kTwoPi};
+  return {s.begin - by, s.end + by};
+}
+
+// One arc where two arcs overlap (either one when they overlap twice), or none.
+std::optional<AzimuthSpan> overlap(const AzimuthSpan& a, const AzimuthSpan& b) {
+  if (b.full_circle()) return a;
+  if (a.full_circle()) return b;
+  for (double shift : {-kTwoPi, 0.0, kTwoPi}) {
+    const double lo = std::max(a.begin, b.begin + shift), hi = std::min(a.end, b.end + shift);
+    if (lo < hi) return AzimuthSpan{lo, hi};
+  }
+  return std::nullopt;
+}
+
+// Plane tests over the region's view volumes. For a camera of the region, a plane's normal n'
+// is within `turn` of the anchor's n (|n' - n| <= turn) and its eye e' within `reach` of the
+// anchor's a, so for any point p:
+//   |(n'.(p - e') - k) - (n.(p - a) - k)| <= turn |p - a| + reach.
+// certainly_meets: for every plane the box's deepest corner stays inside, so OH(OS) at any
+// camera of the region does not cull the box by its view volume.
+// may_meet: false only when for some plane the whole box stays outside for every camera.
 bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, double turn) {
   if (volume.omnidirectional) {
-    // Inside the sphere of radius `far` for every eye: the nearest point plus the reach.
     const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
     const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
     const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
@@ -40,10 +56,48 @@ bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, do
   for (int i = 0; i < volume.plane_count; ++i) {
     const Vec3& n = volume.planes[i].n;
     const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
-    const double slack = turn * length(corner - volume.eye) + reach;
-    if (narrow(volume.planes[i].signed_distance(corner)) < widen(slack)) return false;
+    if (narrow(volume.planes[i].signed_distance(corner)) < widen(turn * length(corner - volume.eye) + reach)) return false;
   }
   return true;
+}
+bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double turn) {
+  const double far_extent = length(Vec3{std::max(std::abs(box.lo.x - volume.eye.x), std::abs(box.hi.x - volume.eye.x)),
+                                        std::max(std::abs(box.lo.y - volume.eye.y), std::abs(box.hi.y - volume.eye.y)),
+                                        std::max(std::abs(box.lo.z - volume.eye.z), std::abs(box.hi.z - volume.eye.z))});
+  if (volume.omnidirectional) {
+    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
+    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
+    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
+    return narrow(std::sqrt(dx * dx + dy * dy + dz * dz) - reach) <= volume.far;
+  }
+  for (int i = 0; i < volume.plane_count; ++i) {
+    const Vec3& n = volume.planes[i].n;
+    const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
+    if (widen(volume.planes[i].signed_distance(corner) + turn * far_extent + reach) < 0.0) return false;
+  }
+  return true;
+}
+
+// Azimuths that every camera of the region covers (so OH(OS) never starts a bin touching them at
+// +inf): those of the anchor's pyramid narrowed by k on every side. A direction inside the
+// narrowed pyramid is at least asin(c sin k) from each original plane, c = min(cos(hfov/2),
+// cos(vfov/2)) (its component across the plane is at least sin k times its component in the
+// plane's pivot plane, which is at least c); k with c sin k > sin(turn) keeps it inside after
+// any rotation by `turn`. Empty when nothing is left.
+std::optional<AzimuthSpan> safe_coverage(const Camera& anchor, double turn) {
+  if (anchor.omnidirectional()) return AzimuthSpan{0.0, kTwoPi};
+  const double c = std::min(std::cos(anchor.hfov / 2), std::cos(anchor.vfov / 2));
+  const double s = widen(std::sin(std::min(turn, kPi / 2)) / c);
+  if (s >= 1.0) return std::nullopt;
+  const double k = std::asin(s) + kAngleMargin;
+  Camera narrowed = anchor;
+  narrowed.hfov -= 2 * k;
+  narrowed.vfov -= 2 * k;
+  if (narrowed.hfov <= 0.0 || narrowed.vfov <= 0.0) return std::nullopt;
+  const AzimuthSpan span = azimuth_coverage(narrowed);
+  if (span.full_circle()) return span;
+  if (span.end - span.begin <= 2 * kAngleMargin) return std::nullopt;
+  return AzimuthSpan{span.begin + kAngleMargin, span.end - kAngleMargin};
 }
 
 // Region-wide bounds, from the anchor eye `a` (plan `a2`), plan radius ε and height ζ:
@@ -55,26 +109,38 @@ struct RegionBounds {
   Vec2 a2;
   double eps, zeta;
 
-  // Widened span and raised highest slope of a solid standing on the ground up to `top`, whose
-  // span from a2 is `span` and whose plan distances from a2 lie in [near, far]; empty when the
-  // eye may come within the solid's reach (such an item is never certified).
-  std::optional<std::pair<AzimuthSpan, double>> grown(const AzimuthSpan& span, double top, double near, double far) const {
-    if (!(narrow(near) > widen(eps))) return std::nullopt;
-    const double shift = azimuth_shift(eps, narrow(near));
-    AzimuthSpan g{span.begin - shift, span.end + shift};
-    if (g.end - g.begin >= kTwoPi) g = {0.0, kTwoPi};
-    // Highest slope over the region: rise from the lowest eye, over the nearest (rising) or
-    // farthest (falling) distance the region allows.
+  bool beyond_reach(double near) const { return narrow(near) > widen(eps); }
+
+  // An item (a solid standing on the ground up to `top`, span `span` from a2, plan distances in
+  // [near, far]): its span widened and its highest slope raised over the region. OH(OS)'s test
+  // at any camera of the region reads no bin outside the widened span and compares a slope no
+  // higher. Empty when the eye may come within the item's reach.
+  std::optional<std::pair<AzimuthSpan, double>> grown_item(const AzimuthSpan& span, double top, double near,
+                                                           double far) const {
+    if (!beyond_reach(near)) return std::nullopt;
+    const AzimuthSpan g = widened(span, azimuth_shift(eps, narrow(near)));
     const double rise = top - (a.z - zeta);
     const double slope = rise >= 0.0 ? rise / (narrow(near) - widen(eps)) : rise / widen(far + eps);
     return std::pair{g, widen(slope)};
   }
 
-  // A CVP's shadow as every camera of the region at least casts it (OH(OS)'s conservative rule):
-  // its span narrowed by the azimuth shift on both sides, the elevation lowered to its minimum.
+  // A CVP's highest slope, lowered to its minimum over the region, with its span narrowed: every
+  // camera's span holds the narrowed one (see shrunk_shadow), and the CVP reaches at least
+  // this slope over it. Empty when nothing is left.
+  std::optional<std::pair<AzimuthSpan, double>> lowered_item(const ConvexSpan& span, double top, double near,
+                                                             double far) const {
+    if (!beyond_reach(near) || !(narrow(far) > widen(eps))) return std::nullopt;
+    const double shift = azimuth_shift(eps, narrow(near));
+    const AzimuthSpan s{span.span.begin + shift, span.span.end - shift};
+    if (!(s.end > s.begin) || !(span.span.end - span.span.begin + 2 * shift < kPi - 1e-6)) return std::nullopt;
+    const double rise = top - (a.z + zeta);
+    const double slope = rise >= 0.0 ? rise / widen(near + eps) : rise / (narrow(far) - widen(eps));
+    return std::pair{s, narrow(slope)};
+  }
+
+  // A CVP's shadow as every camera of the region at least casts it (OH(OS)'s conservative rule).
   // Empty when nothing is left, or when the CVP may come nearer than `unclipped` (it may then
   // not be used as an occluder, see horizon_sweep.hpp).
-  //
   // Span: the tangent points seen from a2 at azimuths b and e move to b', e' within `shift`; the
   // CVP's directions from any eye of the region form one arc shorter than half a turn holding
   // b' and e', which (as e - b + 2 shift < pi) is the arc from b' to e' and so holds
@@ -83,8 +149,9 @@ struct RegionBounds {
   // r over the farthest vertex distance (the tangent vertices are no farther), which is at most
   // max_vertex + ε; if r < 0, at least r over the far-chain distance, which is at least the
   // boundary distance, at least min_boundary - ε.
-  std::optional<std::pair<AzimuthSpan, double>> shrunk(const ConvexVerticalPrism& prism, const ConvexSpan& span,
-                                                       double min_boundary, double max_vertex, double unclipped) const {
+  std::optional<std::pair<AzimuthSpan, double>> shrunk_shadow(const ConvexVerticalPrism& prism, const ConvexSpan& span,
+                                                              double min_boundary, double max_vertex,
+                                                              double unclipped) const {
     if (!(narrow(min_boundary) - widen(eps) > widen(unclipped))) return std::nullopt;
     const double shift = azimuth_shift(eps, narrow(min_boundary));
     const AzimuthSpan s{span.span.begin + shift, span.span.end - shift};
@@ -93,9 +160,31 @@ struct RegionBounds {
     const double slope = rise >= 0.0 ? rise / widen(max_vertex + eps) : rise / (narrow(min_boundary) - widen(eps));
     return std::pair{s, narrow(slope)};
   }
+
+  // A CVP's shadow as no camera of the region casts it higher: the span widened, the slope at
+  // its highest. With the highest rise r = height - (a.z - ζ): if r >= 0 the rule's value is at
+  // most r over the nearest tangent-vertex distance, at least min_boundary - ε; if r < 0, at
+  // most r over the far-chain distance, which is at most max_vertex + ε. A CVP the eye may reach
+  // casts an unbounded shadow (+inf everywhere).
+  std::pair<AzimuthSpan, double> grown_shadow(const ConvexVerticalPrism& prism, const std::optional<ConvexSpan>& span,
+                                              double min_boundary, double max_vertex) const {
+    if (!span || !beyond_reach(min_boundary)) return {{0.0, kTwoPi}, HUGE_VAL};
+    const AzimuthSpan g = widened(span->span, azimuth_shift(eps, narrow(min_boundary)));
+    const double rise = prism.height - (a.z - zeta);
+    const double slope = rise >= 0.0 ? rise / (narrow(min_boundary) - widen(eps)) : rise / widen(max_vertex + eps);
+    return {g, widen(slope)};
+  }
 };
 
 double yaw_difference(double a, double b) { return std::abs(std::remainder(a - b, kTwoPi)); }
+
+// What the sweep keeps about a building it could not mark hidden.
+struct Candidate {
+  std::uint32_t building;
+  double nearest;           // plan distance of its box from the anchor
+  double nearest_farthest;  // smallest farthest-vertex distance among its CVPs
+  AzimuthSpan reach;        // its box's span widened for the region (covers every CVP's shadow)
+};
 
 }  // namespace
 
@@ -107,63 +196,118 @@ bool MotionRegion::contains(const Camera& c) const {
   return yaw_difference(c.yaw, a.yaw) + std::abs(c.pitch - a.pitch) + std::abs(c.roll - a.roll) <= turn;
 }
 
-HiddenCertificate::HiddenCertificate(const Scene& scene, const Quadtree& quadtree)
+RegionCertificate::RegionCertificate(const Scene& scene, const Quadtree& quadtree, std::uint32_t bins)
     : scene_(scene),
       quadtree_(quadtree),
-      cell_epoch_(quadtree.cells().size(), 0),
-      building_epoch_(scene.buildings.size(), 0) {}
+      shrunk_(bins),
+      grown_(bins),
+      uncertain_reach_(bins),
+      visible_epoch_(scene.buildings.size(), 0) {}
 
 // The certificate sweep mirrors OH(OS)'s (horizon_sweep.hpp) from the anchor, with every bound
-// taken over the region:
-//  - an item is marked when its widened span and raised slope lie below the shrunk horizon, so
-//    at any camera of the region OH(OS)'s own test (span inside the widened one, slope below the
-//    raised one, horizon above the shrunk one on every bin) culls it;
-//  - a shadow enters the shrunk horizon only after the sweep (by anchor distance) has passed its
-//    CVP's farthest point + 2ε: from any eye of the region the CVP's farthest point is then
-//    nearer than the item's nearest point, so OH(OS) has merged that shadow before testing it;
-//  - shadows come from every unmarked building whose box certainly meets the view volume of the
-//    whole region, visible or not: OH(OS) tests that building at any camera of the region, and
-//    either merges its shadows or finds it hidden, in which case its shadows lie below a horizon
-//    that is already there.
-// Items outside the anchor's volume are neither marked nor used: the per-frame sweep tests them.
-void HiddenCertificate::certify(const MotionRegion& region, OcclusionHorizon& horizon, CullStatistics& stats) {
-  ++epoch_;
-  cells_hidden_ = buildings_hidden_ = 0;
+// taken over the region. Why each class is right, for any camera of the region:
+//  - hidden: the item's widened span and raised slope lie below the shrunk horizon, so OH(OS)'s
+//    own test (span inside the widened one, slope below the raised one, horizon at least the
+//    shrunk one on every bin) culls it. A shadow enters the shrunk horizon only after the sweep
+//    (by anchor distance) has passed its CVP's farthest point + 2ε: from any eye of the region
+//    that point is then nearer than the item, so OH(OS) has merged the shadow before the test.
+//    Shadows come from every unmarked building whose box certainly meets every view volume of
+//    the region: OH(OS) tests it, and either merges its shadows or finds it hidden, in which
+//    case its shadows lie below a horizon that is already there.
+//  - visible: it certainly meets the view volume, and some CVP's lowered slope reaches the
+//    grown horizon at a bin of its narrowed span that every camera's coverage touches. OH(OS)'s
+//    horizon at that CVP's test holds only shadows of buildings it tests (never of marked-hidden
+//    or certainly-outside ones) whose farthest point is nearer than it; each of those is in the
+//    grown horizon, whose shadows are merged once the sweep passes farthest - 2ε, and the
+//    decision waits until the sweep has passed the building's nearest point + 2ε.
+//  - relevant: an uncertain building X is decided by OH(OS)'s test against the shadows that
+//    reach the bins X's test reads and are merged before that test; a certainly visible building
+//    can cast one only if its widened span meets X's and one of its CVPs' farthest point - 2ε
+//    lies before X's nearest point, and then it is swept.
+// So a query that sweeps only the uncertain and relevant buildings decides each uncertain one
+// exactly as OH(OS) does, and the PVS is those plus the certainly visible.
+void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stats) {
+  if (++epoch_ == 0) {
+    std::fill(visible_epoch_.begin(), visible_epoch_.end(), 0);
+    epoch_ = 1;
+  }
+  visible_.clear();
+  swept_.clear();
+  hidden_count_ = uncertain_count_ = 0;
   const Camera& camera = region.anchor;
   const ViewVolume volume(camera);
   const RegionBounds bounds{camera.position, plan(camera.position), region.radius, region.height};
   const double reach = std::hypot(region.radius, region.height);
   const double unclipped = unclipped_distance(camera);
+  const std::optional<AzimuthSpan> covered = safe_coverage(camera, region.turn);
   const Vec2 e = bounds.a2;
-  horizon.reset();
-  horizon.take_node_visits();
+  const double two_eps = 2 * region.radius;
+  shrunk_.reset();
+  grown_.reset();
+  uncertain_reach_.reset();
+  shrunk_.take_node_visits();
+  grown_.take_node_visits();
+  uncertain_reach_.take_node_visits();
 
   std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
-  ShadowQueue pending;
+  ShadowQueue pending_shrunk, pending_grown;
+  std::vector<Candidate> candidates;
+  // Visibility decisions wait until the sweep passes nearest + 2ε: (key, candidate index).
+  std::priority_queue<std::pair<double, std::size_t>, std::vector<std::pair<double, std::size_t>>, std::greater<>> decisions;
+  std::vector<std::uint8_t> decided_visible;
   const auto& cells = quadtree_.cells();
   const auto& order = quadtree_.buildings();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
 
-  auto certified_box = [&](const Box2& box, double top) {
+  auto hidden_box = [&](const Box2& box, double top) {
     const auto span = box_span(box, e);
     if (!span) return false;
-    const auto g = bounds.grown(span->span, top, min_distance(e, box), max_distance(e, box));
-    return g && horizon.hides(g->first, g->second);
+    const auto g = bounds.grown_item(span->span, top, min_distance(e, box), max_distance(e, box));
+    return g && shrunk_.hides(g->first, g->second);
   };
-  std::vector<std::optional<ConvexSpan>> spans;
+  auto decide = [&](std::size_t i) {
+    const Building& building = scene_.buildings[candidates[i].building];
+    bool visible = false;
+    if (covered && certainly_meets(volume, building.bounds, reach, region.turn)) {
+      for (const ConvexVerticalPrism& prism : building.prisms) {
+        const auto span = convex_span(prism.ring, e);
+        if (!span) continue;
+        const auto low = bounds.lowered_item(*span, prism.height, min_boundary_distance(prism.ring, e),
+                                             max_vertex_distance(prism.ring, e));
+        if (!low) continue;
+        const auto bins = overlap(low->first, *covered);
+        if (bins && grown_.min_over(*bins) <= low->second) {
+          visible = true;
+          break;
+        }
+      }
+    }
+    decided_visible[i] = visible;
+    // Two bins wider: the raise fills only bins wholly inside, and must cover every bin the
+    // building's own test may read.
+    if (!visible) uncertain_reach_.raise(widened(candidates[i].reach, 2 * shrunk_.bin_width()), candidates[i].nearest);
+  };
+  auto decide_before = [&](double distance) {
+    while (!decisions.empty() && decisions.top().first < distance) {
+      decide(decisions.top().second);
+      decisions.pop();
+    }
+  };
 
+  std::vector<std::optional<ConvexSpan>> spans;
   while (!sweep.empty()) {
     const SweepItem item = sweep.top();
     sweep.pop();
-    pending.merge_nearer_than(item.distance, horizon, stats);
+    pending_shrunk.merge_nearer_than(item.distance, shrunk_, stats);
+    pending_grown.merge_nearer_than(item.distance, grown_, stats);
+    decide_before(item.distance);
     if (!item.is_building) {
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!volume.may_intersect(box)) continue;
-      if (certified_box(cell.bounds, cell.max_height)) {
-        cell_epoch_[item.index] = epoch_;
-        ++cells_hidden_;
+      if (!may_meet(volume, box, reach, region.turn)) continue;
+      if (hidden_box(cell.bounds, cell.max_height)) {
+        hidden_count_ += cell.last - cell.first;
         continue;
       }
       if (cell.leaf()) {
@@ -177,35 +321,64 @@ void HiddenCertificate::certify(const MotionRegion& region, OcclusionHorizon& ho
     }
     const Building& building = scene_.buildings[item.index];
     ++stats.buildings_tested;
-    if (!volume.may_intersect(building.bounds)) continue;
+    if (!may_meet(volume, building.bounds, reach, region.turn)) continue;
     spans.clear();
-    bool hidden = certified_box(building.bounds.plan(), building.height);
+    bool hidden = hidden_box(building.bounds.plan(), building.height);
+    for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
     if (!hidden) {
       hidden = true;
-      for (const ConvexVerticalPrism& prism : building.prisms) {
-        spans.push_back(convex_span(prism.ring, e));
-        const auto& span = spans.back();
-        const auto g = span ? bounds.grown(span->span, prism.height, min_boundary_distance(prism.ring, e),
-                                           max_vertex_distance(prism.ring, e))
-                            : std::nullopt;
-        hidden = hidden && g && horizon.hides(g->first, g->second);
+      for (std::size_t p = 0; p < building.prisms.size() && hidden; ++p) {
+        const ConvexVerticalPrism& prism = building.prisms[p];
+        const auto g = spans[p] ? bounds.grown_item(spans[p]->span, prism.height, min_boundary_distance(prism.ring, e),
+                                                    max_vertex_distance(prism.ring, e))
+                                : std::nullopt;
+        hidden = g && shrunk_.hides(g->first, g->second);
       }
     }
     if (hidden) {
-      building_epoch_[item.index] = epoch_;
-      ++buildings_hidden_;
+      ++hidden_count_;
       continue;
     }
-    if (!certainly_meets(volume, building.bounds, reach, region.turn)) continue;
+    // A candidate: its shadows bound the horizon from below (if OH(OS) surely tests it) and
+    // from above, and its own visibility is decided once the sweep is 2ε past it.
+    const bool surely_tested = certainly_meets(volume, building.bounds, reach, region.turn);
+    double nearest_farthest = HUGE_VAL;
     for (std::size_t p = 0; p < building.prisms.size(); ++p) {
       const ConvexVerticalPrism& prism = building.prisms[p];
-      if (!spans[p]) continue;
       const double near = min_boundary_distance(prism.ring, e), far = max_vertex_distance(prism.ring, e);
-      const auto s = bounds.shrunk(prism, *spans[p], near, far, unclipped);
-      if (s) pending.push(widen(far + 2 * region.radius), s->first, s->second);
+      nearest_farthest = std::min(nearest_farthest, far);
+      const auto up = bounds.grown_shadow(prism, spans[p], near, far);
+      pending_grown.push(narrow(far - two_eps), up.first, up.second);
+      if (!surely_tested || !spans[p]) continue;
+      const auto low = bounds.shrunk_shadow(prism, *spans[p], near, far, unclipped);
+      if (low) pending_shrunk.push(widen(far + two_eps), low->first, low->second);
     }
+    const auto box = box_span(building.bounds.plan(), e);
+    const AzimuthSpan reach_span =
+        box && bounds.beyond_reach(item.distance) ? widened(box->span, azimuth_shift(region.radius, narrow(item.distance)))
+                                                  : AzimuthSpan{0.0, kTwoPi};
+    candidates.push_back({item.index, item.distance, nearest_farthest, reach_span});
+    decided_visible.push_back(0);
+    decisions.push({widen(item.distance + two_eps), candidates.size() - 1});
   }
-  stats.horizon_nodes += horizon.take_node_visits();
+  pending_grown.merge_all(grown_, stats);
+  decide_before(HUGE_VAL);
+
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const Candidate& c = candidates[i];
+    if (!decided_visible[i]) {
+      swept_.push_back(c.building);
+      ++uncertain_count_;
+      continue;
+    }
+    visible_.push_back(c.building);
+    visible_epoch_[c.building] = epoch_;
+    // Relevant when some uncertain building whose widened span meets this one's lies beyond
+    // this one's nearest CVP farthest point - 2ε.
+    if (uncertain_reach_.max_over(c.reach) > narrow(c.nearest_farthest - two_eps)) swept_.push_back(c.building);
+  }
+  std::sort(visible_.begin(), visible_.end());
+  stats.horizon_nodes += shrunk_.take_node_visits() + grown_.take_node_visits() + uncertain_reach_.take_node_visits();
 }
 
 }  // namespace cullcheck

@@ -1,29 +1,36 @@
-// The guard of the guarded ΔH method: a carried-over horizon that stays valid while the camera
-// moves within a bounded region around an anchor camera.
+// The guard of the guarded ΔH method: what a carried-over horizon proves about every camera
+// within a bounded region around an anchor camera.
 //
 // Why the published ΔH needs a guard (thesis ch. 3.1.3, Fig. 3.10): it skips whatever lies
 // behind parts of the horizon that rose since the last frame, on the grounds that it "was
 // already occluded in frame t". But frame t's horizon was seen from another eye: after a
-// lateral step, a building that hid behind a thin occluder can show beside it, while the
-// horizon there has risen because of something else. The thesis's remedies are (2) update the
+// lateral step, a building that hid behind an occluder can show beside it, while the horizon
+// there has risen because of something else. The thesis's remedies are (2) update the
 // carried-over horizon only with occluders wider than the distance moved, or (3) fall back to a
 // full recompute. This file does both, with bounds instead of a heuristic:
 //
 //  - MotionRegion: the cameras within `radius` (plan) and `height` (vertical) of the anchor eye,
 //    whose orientation differs from the anchor's by at most `turn` (|Δyaw| + |Δpitch| + |Δroll|,
 //    which bounds the rotation angle between them), with the same fields of view and clip planes.
-//  - certify_hidden: a sweep from the anchor over occluder shadows shrunk for the region (each
-//    span narrowed by asin(ε / distance) per side, each elevation lowered to its minimum over the
-//    region, each merged only after the sweep has passed its farthest point plus 2ε) that marks
-//    every cell and building hidden from every camera of the region, each tested with its span
-//    widened and its highest slope raised in the same way. Occluders narrower than the motion
-//    vanish from the carried-over horizon: remedy (2), made exact.
+//  - RegionCertificate: one sweep from the anchor sorts every building into
+//      hidden    — OH(OS) culls it from every camera of the region: tested against a horizon
+//                  of occluder shadows shrunk for the region (spans narrowed by asin(ε / r) per
+//                  side, elevations lowered to their minimum over the region, merged only once
+//                  the sweep has passed the CVP's farthest point + 2ε), with its own span
+//                  widened and its slope raised the same way. Occluders narrower than the
+//                  motion vanish from this horizon: remedy (2), made exact;
+//      visible   — OH(OS) keeps it from every camera of the region: it certainly meets the view
+//                  volume, and one of its CVPs rises above a horizon of occluder shadows grown
+//                  for the region, at a bin that every camera's azimuth coverage holds;
+//      uncertain — everything else that may meet the view volume of some camera of the region;
+//    plus, among the visible, the `relevant` ones: those whose shadow can reach the bins of an
+//    uncertain building nearer than it, from some camera of the region.
+//    Buildings certainly outside every camera's view volume are in no list.
 //  - Outside the region, the guarded method re-anchors: remedy (3), and the guard "fires".
 //
-// What "hidden from every camera of the region" means is OH(OS)'s own test, not geometry: for
-// any camera of the region, the full OH(OS) sweep (horizon_sweep.hpp) culls every marked item.
-// The proof is in the comments of motion_region.cpp; numeric slack: 1e-9 rad on angles, 1e-9
-// relative on slopes and distances, far above the rounding of the values compared.
+// Everything is proven against OH(OS)'s own tests (horizon_sweep.hpp), not geometry; the proofs
+// are in motion_region.cpp. Numeric slack: 1e-9 rad on angles, 1e-9 relative on slopes and
+// distances, far above the rounding of the values compared.
 #pragma once
 
 #include <cstdint>
@@ -46,27 +53,31 @@ struct MotionRegion {
   bool contains(const Camera& camera) const;
 };
 
-// Cells and buildings known hidden for every camera of a region, as epoch stamps (clearing is
-// O(1): a new certificate takes a new epoch).
-class HiddenCertificate {
+class RegionCertificate {
  public:
-  HiddenCertificate(const Scene& scene, const Quadtree& quadtree);
+  RegionCertificate(const Scene& scene, const Quadtree& quadtree, std::uint32_t bins);
 
-  // Recomputes the certificate for `region` (a sweep from its anchor). `horizon` is scratch
-  // space for the shrunk horizon; its previous content is lost. Statistics are added to `stats`.
-  void certify(const MotionRegion& region, OcclusionHorizon& horizon, CullStatistics& stats);
+  // Recomputes the certificate for `region` (a sweep from its anchor). Statistics are added to
+  // `stats` (cells and buildings tested, horizon nodes).
+  void certify(const MotionRegion& region, CullStatistics& stats);
 
-  bool cell_hidden(std::uint32_t cell) const { return cell_epoch_[cell] == epoch_; }
-  bool building_hidden(std::uint32_t building) const { return building_epoch_[building] == epoch_; }
-  std::uint64_t cells_hidden() const { return cells_hidden_; }
-  std::uint64_t buildings_hidden() const { return buildings_hidden_; }
+  // Scene indices of the certainly visible buildings, ascending.
+  const std::vector<std::uint32_t>& visible() const { return visible_; }
+  // Scene indices of the buildings a query must sweep: the uncertain ones, and the relevant
+  // certainly visible ones; `certainly_visible(i)` tells which.
+  const std::vector<std::uint32_t>& swept() const { return swept_; }
+  bool certainly_visible(std::uint32_t building) const { return visible_epoch_[building] == epoch_; }
+  std::uint64_t hidden_count() const { return hidden_count_; }
+  std::uint64_t uncertain_count() const { return uncertain_count_; }
 
  private:
   const Scene& scene_;
   const Quadtree& quadtree_;
+  OcclusionHorizon shrunk_, grown_, uncertain_reach_;
   std::uint32_t epoch_ = 0;
-  std::vector<std::uint32_t> cell_epoch_, building_epoch_;
-  std::uint64_t cells_hidden_ = 0, buildings_hidden_ = 0;
+  std::vector<std::uint32_t> visible_epoch_;
+  std::vector<std::uint32_t> visible_, swept_;
+  std::uint64_t hidden_count_ = 0, uncertain_count_ = 0;
 };
 
 }  // namespace cullcheck

@@ -34,6 +34,7 @@ class ThesisDeltaHorizonCulling final : public CullingMethod {
   ThesisDeltaHorizonCulling(const Scene& scene, const MethodOptions& options = {});
   std::string name() const override { return "delta_h_thesis"; }
   bool claims_conservative() const override { return false; }
+  bool incremental() const override { return true; }
   CullResult cull(const Camera& camera) override;
 
   // H(t) as left by the last query.

@@ -22,12 +22,23 @@ OcclusionHorizon::OcclusionHorizon(std::uint32_t bins) : bins_(bins), bin_width_
   min_.assign(2 * bins_, kNone);
   max_.assign(2 * bins_, kNone);
   pending_.assign(2 * bins_, kNone);
+  dirty_flag_.assign(2 * bins_, 0);
 }
 
 void OcclusionHorizon::reset() {
-  std::fill(min_.begin(), min_.end(), kNone);
-  std::fill(max_.begin(), max_.end(), kNone);
-  std::fill(pending_.begin(), pending_.end(), kNone);
+  if (all_dirty_ || dirty_.size() > bins_ / 2) {
+    std::fill(min_.begin(), min_.end(), kNone);
+    std::fill(max_.begin(), max_.end(), kNone);
+    std::fill(pending_.begin(), pending_.end(), kNone);
+    std::fill(dirty_flag_.begin(), dirty_flag_.end(), 0);
+  } else {
+    for (std::uint32_t node : dirty_) {
+      min_[node] = max_[node] = pending_[node] = kNone;
+      dirty_flag_[node] = 0;
+    }
+  }
+  dirty_.clear();
+  all_dirty_ = false;
 }
 
 template <class F>
@@ -80,6 +91,12 @@ double OcclusionHorizon::min_over(const AzimuthSpan& span) {
   return m;
 }
 
+double OcclusionHorizon::max_over(const AzimuthSpan& span) {
+  double m = kNone;
+  for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::max(m, max_node(1, 0, bins_ - 1, a, b)); });
+  return m;
+}
+
 bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) { return max_slope < min_over(span); }
 
 double OcclusionHorizon::bin_value(std::uint32_t bin) { return min_bins(bin, bin); }
@@ -95,6 +112,7 @@ void OcclusionHorizon::assign(const std::vector<double>& values) {
   std::copy(values.begin(), values.end(), min_.begin() + bins_);
   std::copy(values.begin(), values.end(), max_.begin() + bins_);
   std::fill(pending_.begin(), pending_.end(), kNone);
+  all_dirty_ = true;
   for (std::uint32_t node = bins_ - 1; node >= 1; --node) {
     min_[node] = std::min(min_[2 * node], min_[2 * node + 1]);
     max_[node] = std::max(max_[2 * node], max_[2 * node + 1]);
@@ -109,6 +127,7 @@ std::uint64_t OcclusionHorizon::take_node_visits() {
 }
 
 void OcclusionHorizon::apply(std::uint32_t node, double slope) {
+  touch(node);
   min_[node] = std::max(min_[node], slope);
   max_[node] = std::max(max_[node], slope);
   pending_[node] = std::max(pending_[node], slope);
@@ -139,6 +158,7 @@ void OcclusionHorizon::raise_node(std::uint32_t node, std::uint32_t lo, std::uin
   const std::uint32_t mid = lo + (hi - lo) / 2;
   if (first <= mid) raise_node(2 * node, lo, mid, first, last, slope);
   if (last > mid) raise_node(2 * node + 1, mid + 1, hi, first, last, slope);
+  touch(node);
   min_[node] = std::min(min_[2 * node], min_[2 * node + 1]);
   max_[node] = std::max(max_[2 * node], max_[2 * node + 1]);
 }
@@ -152,6 +172,18 @@ double OcclusionHorizon::min_node(std::uint32_t node, std::uint32_t lo, std::uin
   double m = kAll;
   if (first <= mid) m = std::min(m, min_node(2 * node, lo, mid, first, last));
   if (last > mid) m = std::min(m, min_node(2 * node + 1, mid + 1, hi, first, last));
+  return m;
+}
+
+double OcclusionHorizon::max_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first,
+                                  std::uint32_t last) {
+  ++visits_;
+  if (first <= lo && hi <= last) return max_[node];
+  push_down(node);
+  const std::uint32_t mid = lo + (hi - lo) / 2;
+  double m = kNone;
+  if (first <= mid) m = std::max(m, max_node(2 * node, lo, mid, first, last));
+  if (last > mid) m = std::max(m, max_node(2 * node + 1, mid + 1, hi, first, last));
   return m;
 }
 

@@ -36,7 +36,8 @@ class OcclusionHorizon {
  public:
   explicit OcclusionHorizon(std::uint32_t bins = 4096);
 
-  // Lowers every bin to -inf (nothing hidden).
+  // Lowers every bin to -inf (nothing hidden). Costs the number of nodes written since the
+  // last reset.
   void reset();
   // Sets the bins lying entirely outside `span` to +inf: directions outside the view volume's
   // azimuth coverage are hidden from the start (6-DoF mapping of the frustum, ch. 3.1.2).
@@ -49,6 +50,8 @@ class OcclusionHorizon {
   bool hides(const AzimuthSpan& span, double max_slope);
   // min H over the bins touched by `span`.
   double min_over(const AzimuthSpan& span);
+  // max H over the bins touched by `span`.
+  double max_over(const AzimuthSpan& span);
 
   std::uint32_t bins() const { return bins_; }
   double bin_width() const { return bin_width_; }
@@ -69,6 +72,7 @@ class OcclusionHorizon {
   double min_bins(std::uint32_t first, std::uint32_t last);
   void raise_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first, std::uint32_t last, double slope);
   double min_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first, std::uint32_t last);
+  double max_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first, std::uint32_t last);
   void apply(std::uint32_t node, double slope);
   void push_down(std::uint32_t node);
   // Calls f(first, last) for the one or two non-wrapping bin ranges of a span.
@@ -76,7 +80,18 @@ class OcclusionHorizon {
 
   std::uint32_t bins_;
   double bin_width_;
+  void touch(std::uint32_t node) {
+    if (dirty_flag_[node]) return;
+    dirty_flag_[node] = 1;
+    dirty_.push_back(node);
+  }
+
   std::vector<double> min_, max_, pending_;
+  // Nodes written since the last reset, so that reset costs what the query touched, not the
+  // whole tree (a query touches O(shadows log bins) nodes of 2 * bins).
+  std::vector<std::uint32_t> dirty_;
+  std::vector<std::uint8_t> dirty_flag_;
+  bool all_dirty_ = false;
   std::uint64_t visits_ = 0;
 };
 

@@ -7,20 +7,46 @@
 namespace cullcheck {
 namespace {
 
-double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  double t = len2 > 0 ? dot(p - a, ab) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return length(p - (a + ab * t));
-}
-
 // Spans this close to half a turn come from an eye practically on the polygon.
 constexpr double kMaxSpan = kPi - 1e-9;
 
 }  // namespace
 
 namespace {
+
+// The span of a convex polygon's vertices seen from an eye outside it. Every direction then
+// lies within less than half a turn, where the sign of a cross product orders directions by
+// angle, so the two extreme (tangent) vertices are found without trigonometry and atan2 is
+// called twice. Empty when the eye is inside or on the polygon, or so close that the span
+// (nearly) reaches half a turn.
+std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 eye) {
+  bool outside = false;
+  for (std::size_t i = 0; i < n && !outside; ++i) outside = cross(ring[(i + 1) % n] - ring[i], eye - ring[i]) < 0.0;
+  if (!outside) return std::nullopt;
+  std::size_t lo = 0, hi = 0;
+  Vec2 dlo = ring[0] - eye, dhi = dlo;
+  if (dlo.x == 0.0 && dlo.y == 0.0) return std::nullopt;
+  for (std::size_t i = 1; i < n; ++i) {
+    const Vec2 d = ring[i] - eye;
+    if (d.x == 0.0 && d.y == 0.0) return std::nullopt;
+    if (cross(dlo, d) < 0.0) lo = i, dlo = d;
+    if (cross(dhi, d) > 0.0) hi = i, dhi = d;
+  }
+  const double width = std::atan2(cross(dlo, dhi), dot(dlo, dhi));
+  if (!(width >= 0.0) || width >= kMaxSpan) return std::nullopt;
+  const double begin = azimuth_of(dlo);
+  return ConvexSpan{{begin, begin + width}, lo, hi};
+}
+
+// Squared distance from p to the segment ab.
+double segment_distance_squared(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  double t = len2 > 0 ? dot(p - a, ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const Vec2 d = p - (a + ab * t);
+  return dot(d, d);
+}
 
 // The smallest azimuth span holding every direction, with the indices of the extreme ones.
 // Relative to the first direction's angle, a set spanning less than half a turn has its
@@ -47,41 +73,35 @@ std::optional<ConvexSpan> span_of_directions(const std::vector<Vec2>& directions
 }  // namespace
 
 std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
-  const std::size_t n = ring.size();
-  bool outside = false;
-  for (std::size_t i = 0; i < n && !outside; ++i) outside = cross(ring[(i + 1) % n] - ring[i], eye - ring[i]) < 0.0;
-  if (!outside) return std::nullopt;
-  std::vector<Vec2> directions;
-  directions.reserve(n);
-  for (Vec2 p : ring) directions.push_back(p - eye);
-  return span_of_directions(directions, 0.0);
+  return span_of_convex(ring.data(), ring.size(), eye);
 }
 
 std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye) {
-  return convex_span({box.lo, {box.hi.x, box.lo.y}, box.hi, {box.lo.x, box.hi.y}}, eye);
+  const Vec2 corners[4] = {box.lo, {box.hi.x, box.lo.y}, box.hi, {box.lo.x, box.hi.y}};
+  return span_of_convex(corners, 4, eye);
 }
 
 double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye) {
-  double d = 0.0;
-  for (Vec2 p : ring) d = std::max(d, length(p - eye));
-  return d;
+  double d2 = 0.0;
+  for (Vec2 p : ring) d2 = std::max(d2, dot(p - eye, p - eye));
+  return std::sqrt(d2);
 }
 
 double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye) {
-  double d = HUGE_VAL;
-  for (std::size_t i = 0, n = ring.size(); i < n; ++i) d = std::min(d, point_segment_distance(eye, ring[i], ring[(i + 1) % n]));
-  return d;
+  double d2 = HUGE_VAL;
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i) d2 = std::min(d2, segment_distance_squared(eye, ring[i], ring[(i + 1) % n]));
+  return std::sqrt(d2);
 }
 
 double min_far_chain_distance(const std::vector<Vec2>& ring, Vec2 eye) {
-  double d = HUGE_VAL;
+  double d2 = HUGE_VAL;
   for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
     const Vec2 a = ring[i], b = ring[(i + 1) % n];
     // Counter-clockwise ring: the eye on the inner side of an edge's line (or on it) means the
     // edge faces away from the eye.
-    if (cross(b - a, eye - a) >= 0.0) d = std::min(d, point_segment_distance(eye, a, b));
+    if (cross(b - a, eye - a) >= 0.0) d2 = std::min(d2, segment_distance_squared(eye, a, b));
   }
-  return d;
+  return std::sqrt(d2);
 }
 
 

@@ -1,0 +1,79 @@
+#include "reports/scaling.hpp"
+
+#include <cstdio>
+
+#include "engine/method.hpp"
+#include "generators/camera_paths.hpp"
+#include "generators/city.hpp"
+#include "reports/statistics.hpp"
+
+namespace cullcheck {
+
+nlohmann::json run_scaling(const ScalingOptions& options) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int grid : options.grids) {
+    const Scene scene = generators::make_city("thesis", options.seed, {{"grid_x", grid}, {"grid_y", grid}});
+    const CameraPath walk = generators::make_camera_path("street_walk", scene, options.seed, {{"frames", options.frames}});
+    std::vector<std::unique_ptr<CullingMethod>> methods;
+    for (const std::string& name : options.methods) methods.push_back(make_method(name, scene));
+    struct Tally {
+      std::vector<double> ms, pvs;
+      double cells = 0, nodes = 0;
+      std::size_t differs = 0;
+    };
+    std::vector<Tally> tally(methods.size());
+    std::size_t reference = methods.size();
+    for (std::size_t m = 0; m < methods.size(); ++m)
+      if (options.methods[m] == "oh_os_conservative") reference = m;
+    std::vector<CullResult> results(methods.size());
+    for (const Camera& camera : walk.frames) {
+      for (std::size_t m = 0; m < methods.size(); ++m) {
+        results[m] = methods[m]->cull(camera);
+        tally[m].ms.push_back(results[m].stats.cull_ms);
+        tally[m].pvs.push_back(static_cast<double>(results[m].pvs.size()));
+        tally[m].cells += static_cast<double>(results[m].stats.cells_tested);
+        tally[m].nodes += static_cast<double>(results[m].stats.horizon_nodes);
+      }
+      if (reference < methods.size())
+        for (std::size_t m = 0; m < methods.size(); ++m) tally[m].differs += results[m].pvs != results[reference].pvs;
+    }
+    const double frames = static_cast<double>(walk.frames.size());
+    nlohmann::json row_methods = nlohmann::json::array();
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      const Tally& t = tally[m];
+      nlohmann::json r = {{"method", options.methods[m]},
+                          {"cull_ms_median", median(t.ms)},
+                          {"cull_ms_p95", percentile(t.ms, 95)},
+                          {"pvs_mean", mean(t.pvs)},
+                          {"cells_tested_mean", t.cells / frames},
+                          {"horizon_nodes_mean", t.nodes / frames}};
+      if (reference < methods.size()) {
+        r["frames_pvs_differs_from_oh_os"] = t.differs;
+        const double own = median(t.ms);
+        r["oh_os_cull_ms_median_ratio"] = own > 0 ? median(tally[reference].ms) / own : 0.0;
+      }
+      row_methods.push_back(r);
+    }
+    rows.push_back({{"grid", grid}, {"buildings", scene.buildings.size()}, {"frames", walk.frames.size()}, {"methods", row_methods}});
+  }
+  return rows;
+}
+
+std::string scaling_table(const nlohmann::json& rows) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%9s %-20s %9s %9s %9s %9s %12s %9s\n", "buildings", "method", "ms_med", "ms_p95",
+                "pvs_mean", "cells", "oh_os/method", "pvs!=oh_os");
+  out += line;
+  for (const auto& row : rows)
+    for (const auto& m : row["methods"]) {
+      std::snprintf(line, sizeof line, "%9zu %-20s %9.3f %9.3f %9.1f %9.1f %12.2f %9zu\n", row["buildings"].get<std::size_t>(),
+                    m["method"].get<std::string>().c_str(), m["cull_ms_median"].get<double>(), m["cull_ms_p95"].get<double>(),
+                    m["pvs_mean"].get<double>(), m["cells_tested_mean"].get<double>(),
+                    m.value("oh_os_cull_ms_median_ratio", 0.0), m.value("frames_pvs_differs_from_oh_os", std::size_t{0}));
+      out += line;
+    }
+  return out;
+}
+
+}  // namespace cullcheck
