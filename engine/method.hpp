@@ -51,7 +51,7 @@ struct MethodOptions {
   std::uint32_t horizon_bins = 4096;  // azimuth resolution of the occlusion horizon over 2*pi
   std::uint32_t quadtree_leaf_size = 8;  // max buildings per quadtree leaf
   // Guarded ΔH: the motion one carried-over horizon stays valid for (engine/delta_horizon/).
-  double delta_radius = 1.0;  // plan distance from the anchor eye, metres (ε)
+  double delta_radius = 0.5;  // plan distance from the anchor eye, metres (ε)
   double delta_height = 0.5;  // vertical distance from the anchor eye, metres
   double delta_turn = 0.05;   // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
 };

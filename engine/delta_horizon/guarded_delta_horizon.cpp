@@ -20,7 +20,18 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   CullResult result;
   CullStatistics& stats = result.stats;
   if (!region_ || !region_->contains(camera)) {
-    region_ = MotionRegion{camera, options_.delta_radius, options_.delta_height, options_.delta_turn};
+    // The region is centred ahead of the eye, along its last plan step (0.9 ε ahead, so this
+    // camera is inside): walking on, the eye crosses the whole disc before the guard fires again.
+    Camera anchor = camera;
+    if (last_camera_) {
+      const Vec2 step = plan(camera.position) - plan(last_camera_->position);
+      const double l = length(step);
+      if (l > 0.0 && l < options_.delta_radius) {
+        const Vec2 ahead = step * (0.9 * options_.delta_radius / l);
+        anchor.position = {camera.position.x + ahead.x, camera.position.y + ahead.y, camera.position.z};
+      }
+    }
+    region_ = MotionRegion{anchor, options_.delta_radius, options_.delta_height, options_.delta_turn};
     certificate_.certify(*region_, stats);
     stats.guard_fires = 1;
     order_.clear();

@@ -181,6 +181,7 @@ double yaw_difference(double a, double b) { return std::abs(std::remainder(a - b
 // What the sweep keeps about a building it could not mark hidden.
 struct Candidate {
   std::uint32_t building;
+  std::uint32_t first_prism;  // its CVPs' geometry in the sweep's prism list
   double nearest;           // plan distance of its box from the anchor
   double nearest_farthest;  // smallest farthest-vertex distance among its CVPs
   AzimuthSpan reach;        // its box's span widened for the region (covers every CVP's shadow)
@@ -265,15 +266,20 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     const auto g = bounds.grown_item(span->span, top, min_distance(e, box), max_distance(e, box));
     return g && shrunk_.hides(g->first, g->second);
   };
+  // The CVPs of every candidate seen from the anchor (computed once, read again by decide).
+  struct PrismView {
+    std::optional<ConvexSpan> span;
+    double near, far;
+  };
+  std::vector<PrismView> prism_views;
   auto decide = [&](std::size_t i) {
     const Building& building = scene_.buildings[candidates[i].building];
     bool visible = false;
     if (covered && certainly_meets(volume, building.bounds, reach, region.turn)) {
-      for (const ConvexVerticalPrism& prism : building.prisms) {
-        const auto span = convex_span(prism.ring, e);
-        if (!span) continue;
-        const auto low = bounds.lowered_item(*span, prism.height, min_boundary_distance(prism.ring, e),
-                                             max_vertex_distance(prism.ring, e));
+      for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+        const PrismView& view = prism_views[candidates[i].first_prism + p];
+        if (!view.span) continue;
+        const auto low = bounds.lowered_item(*view.span, building.prisms[p].height, view.near, view.far);
         if (!low) continue;
         const auto bins = overlap(low->first, *covered);
         if (bins && grown_.min_over(*bins) <= low->second) {
@@ -343,9 +349,11 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     // from above, and its own visibility is decided once the sweep is 2ε past it.
     const bool surely_tested = certainly_meets(volume, building.bounds, reach, region.turn);
     double nearest_farthest = HUGE_VAL;
+    const auto first_prism = static_cast<std::uint32_t>(prism_views.size());
     for (std::size_t p = 0; p < building.prisms.size(); ++p) {
       const ConvexVerticalPrism& prism = building.prisms[p];
       const double near = min_boundary_distance(prism.ring, e), far = max_vertex_distance(prism.ring, e);
+      prism_views.push_back({spans[p], near, far});
       nearest_farthest = std::min(nearest_farthest, far);
       const auto up = bounds.grown_shadow(prism, spans[p], near, far);
       pending_grown.push(narrow(far - two_eps), up.first, up.second);
@@ -357,7 +365,7 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     const AzimuthSpan reach_span =
         box && bounds.beyond_reach(item.distance) ? widened(box->span, azimuth_shift(region.radius, narrow(item.distance)))
                                                   : AzimuthSpan{0.0, kTwoPi};
-    candidates.push_back({item.index, item.distance, nearest_farthest, reach_span});
+    candidates.push_back({item.index, first_prism, item.distance, nearest_farthest, reach_span});
     decided_visible.push_back(0);
     decisions.push({widen(item.distance + two_eps), candidates.size() - 1});
   }

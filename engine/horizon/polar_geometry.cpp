@@ -21,7 +21,7 @@ namespace {
 // (nearly) reaches half a turn.
 std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 eye) {
   bool outside = false;
-  for (std::size_t i = 0; i < n && !outside; ++i) outside = cross(ring[(i + 1) % n] - ring[i], eye - ring[i]) < 0.0;
+  for (std::size_t i = 0, j = n - 1; i < n && !outside; j = i++) outside = cross(ring[i] - ring[j], eye - ring[j]) < 0.0;
   if (!outside) return std::nullopt;
   std::size_t lo = 0, hi = 0;
   Vec2 dlo = ring[0] - eye, dhi = dlo;
@@ -89,14 +89,14 @@ double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye) {
 
 double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye) {
   double d2 = HUGE_VAL;
-  for (std::size_t i = 0, n = ring.size(); i < n; ++i) d2 = std::min(d2, segment_distance_squared(eye, ring[i], ring[(i + 1) % n]));
+  for (std::size_t i = 0, n = ring.size(), j = n - 1; i < n; j = i++) d2 = std::min(d2, segment_distance_squared(eye, ring[j], ring[i]));
   return std::sqrt(d2);
 }
 
 double min_far_chain_distance(const std::vector<Vec2>& ring, Vec2 eye) {
   double d2 = HUGE_VAL;
-  for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
-    const Vec2 a = ring[i], b = ring[(i + 1) % n];
+  for (std::size_t i = 0, n = ring.size(), j = n - 1; i < n; j = i++) {
+    const Vec2 a = ring[j], b = ring[i];
     // Counter-clockwise ring: the eye on the inner side of an edge's line (or on it) means the
     // edge faces away from the eye.
     if (cross(b - a, eye - a) >= 0.0) d2 = std::min(d2, segment_distance_squared(eye, a, b));
