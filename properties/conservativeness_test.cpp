@@ -9,21 +9,12 @@
 #include "engine/method.hpp"
 #include "generators/rapidcheck_gens.hpp"
 #include "oracle/oracle.hpp"
+#include "properties/property_oracle.hpp"
 
 namespace cullcheck {
 namespace {
 
 namespace rcgen = generators::rcgen;
-
-// The oracle's density for properties: coarser than the report's (cases are many), still
-// dense enough that a culled visible building is very likely witnessed.
-oracle::OracleOptions property_oracle() {
-  oracle::OracleOptions o;
-  o.sampling.spacing_m = 3.0;
-  o.sampling.frustum_resolution = 128;
-  o.sampling.threads = 1;
-  return o;
-}
 
 void check_conservative(const std::string& method_name, const generators::SceneCase& c) {
   const Scene scene = generators::scene_of(c.spec);

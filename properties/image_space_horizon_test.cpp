@@ -24,6 +24,7 @@
 #include "engine/method.hpp"
 #include "generators/rapidcheck_gens.hpp"
 #include "oracle/oracle.hpp"
+#include "properties/property_oracle.hpp"
 #include "reports/claims.hpp"
 
 namespace cullcheck {
@@ -31,15 +32,6 @@ namespace {
 
 namespace rcgen = generators::rcgen;
 using generators::SceneCase;
-
-// The properties' oracle density (as in conservativeness_test): coarse, many cases.
-oracle::OracleOptions property_oracle() {
-  oracle::OracleOptions o;
-  o.sampling.spacing_m = 3.0;
-  o.sampling.frustum_resolution = 128;
-  o.sampling.threads = 1;
-  return o;
-}
 
 // What the oracle sees and OH(IS) culled, with the oracle's description of the first such
 // building (its witness ray), empty when OH(IS) kept everything the oracle saw.

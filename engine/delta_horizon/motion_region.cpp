@@ -257,7 +257,6 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
   std::priority_queue<std::pair<double, std::size_t>, std::vector<std::pair<double, std::size_t>>, std::greater<>> decisions;
   std::vector<std::uint8_t> decided_visible;
   const auto& cells = quadtree_.cells();
-  const auto& order = quadtree_.buildings();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
 
   auto hidden_box = [&](const Box2& box, double top) {
@@ -316,13 +315,9 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
         hidden_count_ += cell.last - cell.first;
         continue;
       }
-      if (cell.leaf()) {
-        for (std::uint32_t i = cell.first; i < cell.last; ++i)
-          sweep.push({min_distance(e, scene_.buildings[order[i]].bounds.plan()), true, order[i]});
-      } else {
-        for (std::uint32_t c = cell.first_child; c < cell.first_child + 4; ++c)
-          if (cells[c].last > cells[c].first) sweep.push({min_distance(e, cells[c].bounds), false, c});
-      }
+      quadtree_.for_each_child(
+          cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
+          [&](std::uint32_t b) { sweep.push({min_distance(e, scene_.buildings[b].bounds.plan()), true, b}); });
       continue;
     }
     const Building& building = scene_.buildings[item.index];

@@ -65,7 +65,6 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
   // Steps 4-5: the quadtree front to back against ΔH; what shows through the openings joins the
   // PVS and raises both H(t+1) and ΔH.
   const auto& cells = quadtree_.cells();
-  const auto& order = quadtree_.buildings();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
   while (!sweep.empty()) {
     const SweepItem item = sweep.top();
@@ -76,14 +75,11 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
       if (!volume.may_intersect(box) || box_hidden(delta_, cell.bounds, cell.max_height, eye)) continue;
-      if (cell.leaf()) {
-        for (std::uint32_t i = cell.first; i < cell.last; ++i)
-          if (tested_at_[order[i]] != frame_)
-            sweep.push({min_distance(e, scene_.buildings[order[i]].bounds.plan()), true, order[i]});
-      } else {
-        for (std::uint32_t c = cell.first_child; c < cell.first_child + 4; ++c)
-          if (cells[c].last > cells[c].first) sweep.push({min_distance(e, cells[c].bounds), false, c});
-      }
+      quadtree_.for_each_child(
+          cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
+          [&](std::uint32_t b) {
+            if (tested_at_[b] != frame_) sweep.push({min_distance(e, scene_.buildings[b].bounds.plan()), true, b});
+          });
       continue;
     }
     const Building& building = scene_.buildings[item.index];

@@ -156,7 +156,6 @@ std::uint64_t sweep_horizon(const Scene& scene, const Quadtree& quadtree, Occlus
   std::uint64_t skipped = 0;
   std::vector<std::optional<ConvexSpan>> spans;
   const auto& cells = quadtree.cells();
-  const auto& order = quadtree.buildings();
   auto push_cell = [&](std::uint32_t c) {
     if (cells[c].last <= cells[c].first) return;
     if (skip.cell(c)) {
@@ -176,17 +175,13 @@ std::uint64_t sweep_horizon(const Scene& scene, const Quadtree& quadtree, Occlus
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
       if (!volume.may_intersect(box) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
-      if (cell.leaf()) {
-        for (std::uint32_t i = cell.first; i < cell.last; ++i) {
-          if (skip.building(order[i])) {
-            ++skipped;
-            continue;
-          }
-          sweep.push({min_distance(e, scene.buildings[order[i]].bounds.plan()), true, order[i]});
+      quadtree.for_each_child(cell, push_cell, [&](std::uint32_t b) {
+        if (skip.building(b)) {
+          ++skipped;
+          return;
         }
-      } else {
-        for (std::uint32_t c = cell.first_child; c < cell.first_child + 4; ++c) push_cell(c);
-      }
+        sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b});
+      });
       continue;
     }
     const Building& building = scene.buildings[item.index];

@@ -29,6 +29,17 @@ class Quadtree {
   const std::vector<Cell>& cells() const { return cells_; }  // cells()[0] is the root
   // Scene building indices, ordered so that each cell's buildings are contiguous.
   const std::vector<std::uint32_t>& buildings() const { return order_; }
+  // Calls on_cell(child index) for each non-empty child of an inner cell, or on_building(scene
+  // building index) for each building of a leaf: one step of a front-to-back traversal.
+  template <class OnCell, class OnBuilding>
+  void for_each_child(const Cell& cell, OnCell&& on_cell, OnBuilding&& on_building) const {
+    if (cell.leaf()) {
+      for (std::uint32_t i = cell.first; i < cell.last; ++i) on_building(order_[i]);
+      return;
+    }
+    for (std::uint32_t c = cell.first_child; c < cell.first_child + 4; ++c)
+      if (cells_[c].last > cells_[c].first) on_cell(c);
+  }
   // Structure invariant: bounds and max heights enclose every building below, ranges nest.
   std::string check_invariants(const Scene& scene) const;
 
