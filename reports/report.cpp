@@ -119,7 +119,11 @@ nlohmann::json build_report(const ReportInputs& in) {
       violations.push_back({{"frame", x.frame}, {"building", x.building}, {"model", x.model}, {"witness", x.witness}, {"replay", x.replay}});
     runs.push_back({{"method", r.method},
                     {"claims_conservative", r.claims_conservative},
-                    {"parameters", {{"horizon_bins", in.method_options.horizon_bins}, {"quadtree_leaf_size", in.method_options.quadtree_leaf_size}}},
+                    {"parameters", {{"horizon_bins", in.method_options.horizon_bins},
+                                    {"quadtree_leaf_size", in.method_options.quadtree_leaf_size},
+                                    {"delta_radius", in.method_options.delta_radius},
+                                    {"delta_height", in.method_options.delta_height},
+                                    {"delta_turn", in.method_options.delta_turn}}},
                     {"frames", r.cull_ms.size()},
                     {"cull_ms_median", median(r.cull_ms)},
                     {"cull_ms_p95", percentile(r.cull_ms, 95)},

@@ -81,6 +81,28 @@ struct SamplingFlags {
   }
 };
 
+// The engine's tuning knobs, the same on every subcommand that runs methods.
+struct MethodFlags {
+  cc::MethodOptions options;
+  void add(CLI::App& app) {
+    app.add_option("--horizon-bins", options.horizon_bins, "Occlusion horizon bins over 360 degrees (power of two)")
+        ->capture_default_str();
+    app.add_option("--leaf-size", options.quadtree_leaf_size, "Most buildings in a quadtree leaf")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1000000u));
+    app.add_option("--delta-radius", options.delta_radius,
+                   "Guarded ΔH: plan radius (m) of the motion region a certificate covers")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-6, 1e4));
+    app.add_option("--delta-height", options.delta_height, "Guarded ΔH: height range (m) of the motion region")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e4));
+    app.add_option("--delta-turn", options.delta_turn, "Guarded ΔH: turn (rad, |Δyaw|+|Δpitch|+|Δroll|) the region allows")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1.5));
+  }
+};
+
 std::vector<std::string> parse_methods(const std::string& list) {
   if (list == "all") return cc::method_names();
   std::vector<std::string> out;
@@ -133,6 +155,8 @@ int main(int argc, char** argv) {
   CLI::App* cull = app.add_subcommand("cull", "Run one engine method for a camera and print its PVS as JSON");
   SceneFlags cull_scene;
   cull_scene.add(*cull);
+  MethodFlags cull_tuning;
+  cull_tuning.add(*cull);
   std::string cull_method = "oh_os_conservative", cull_camera, cull_path;
   cull->add_option("--method", cull_method, "Engine method")->capture_default_str();
   auto* cull_camera_option = cull->add_option("--camera", cull_camera, "Camera as JSON (scene-local coordinates)");
@@ -148,6 +172,8 @@ int main(int argc, char** argv) {
   verify_path.add(*verify, 60);
   SamplingFlags verify_sampling;
   verify_sampling.add(*verify);
+  MethodFlags verify_tuning;
+  verify_tuning.add(*verify);
   verify->add_option("--method", verify_methods, "Comma-separated methods, or 'all'")->capture_default_str();
   verify->add_option("--camera", verify_camera, "One camera as JSON (instead of a path)");
 
@@ -159,6 +185,8 @@ int main(int argc, char** argv) {
   report_path.add(*report, 300);
   SamplingFlags report_sampling;
   report_sampling.add(*report);
+  MethodFlags report_tuning;
+  report_tuning.add(*report);
   std::string report_methods = "all", report_output = "report.json", benchmark_json;
   std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
   cc::ClaimSearchOptions claim_options;
@@ -207,7 +235,7 @@ int main(int argc, char** argv) {
     }
     if (*cull) {
       const cc::Scene scene = cull_scene.source.load();
-      auto method = cc::make_method(cull_method, scene);
+      auto method = cc::make_method(cull_method, scene, cull_tuning.options);
       std::vector<cc::Camera> cameras;
       if (cull_camera.empty() && cull_path.empty())
         throw cc::InputError("command line", "camera", "give a camera (--camera JSON) or a path (--path FILE)");
@@ -238,7 +266,7 @@ int main(int argc, char** argv) {
       options.oracle.sampling = verify_sampling.sampling;
       options.max_replays = 10;
       if (verify_camera.empty()) options.path_replay_flags = verify_path.replay_flags();
-      const cc::PathVerification v = cc::verify_path(scene, verify_scene.source, path, methods, {}, options);
+      const cc::PathVerification v = cc::verify_path(scene, verify_scene.source, path, methods, verify_tuning.options, options);
       std::cout << cc::summary_table(v);
       for (const cc::MethodRun& r : v.runs)
         for (const cc::Violation& x : r.violations)
@@ -256,9 +284,10 @@ int main(int argc, char** argv) {
       const std::vector<std::string> methods = parse_methods(report_methods);
       std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
                 << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
-      const cc::PathVerification v = cc::verify_path(scene, report_scene.source, path, methods, {}, options);
+      const cc::PathVerification v = cc::verify_path(scene, report_scene.source, path, methods, report_tuning.options, options);
       claim_options.sampling = report_sampling.sampling;
       cc::ReportInputs in;
+      in.method_options = report_tuning.options;
       in.scene = &scene;
       in.source = report_scene.source;
       in.path = &path;
