@@ -93,6 +93,28 @@ BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, delta_h_thesis, std::string("delta_h_
 BENCHMARK_CAPTURE(BM_CullThesisStreetWalk, delta_h_guarded, std::string("delta_h_guarded"))
     ->Unit(benchmark::kMicrosecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
 
+// The guarded ΔH's motion region against its cost: radius in centimetres (25, 50, 100, 200 cm).
+// Small regions decide more buildings without a test but re-anchor (the guard fires) more often.
+void BM_GuardedDeltaRadius(benchmark::State& state) {
+  const Scene& scene = thesis_scene();
+  const CameraPath& path = thesis_walk();
+  MethodOptions options;
+  options.delta_radius = static_cast<double>(state.range(0)) / 100.0;
+  auto method = make_method("delta_h_guarded", scene, options);
+  std::size_t frame = 0;
+  double fires = 0, frames = 0;
+  for (auto _ : state) {
+    const CullResult r = method->cull(path.frames[frame]);
+    benchmark::DoNotOptimize(r.pvs.data());
+    fires += static_cast<double>(r.stats.guard_fires);
+    frames += 1;
+    frame = (frame + 1) % path.frames.size();
+  }
+  state.counters["guard_fires_per_frame"] = fires / frames;
+}
+BENCHMARK(BM_GuardedDeltaRadius)->Arg(25)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMicrosecond)->MinTime(1.0)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+
 // Cost against city size: the thesis layout with grid x grid buildings (100: 10k, 200: 40k,
 // 400: 160k, 800: 640k) and a 1,000-frame street walk through it; one iteration culls one frame.
 struct SizedCity {
