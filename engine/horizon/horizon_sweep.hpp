@@ -17,7 +17,6 @@
 // be hidden — without testing it — gives the same PVS and the same horizon.
 #pragma once
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>

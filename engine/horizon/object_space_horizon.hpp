@@ -40,8 +40,6 @@ class ObjectSpaceHorizonCulling final : public CullingMethod {
   // The horizon as left by the last query (for invariants, reports and the ΔH method).
   OcclusionHorizon& horizon() { return horizon_; }
   const Quadtree& quadtree() const { return quadtree_; }
-  // Slope of a CVP's shadow under this method's rule, given its span seen from the eye.
-  double shadow_slope(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span) const;
 
  private:
   const Scene& scene_;

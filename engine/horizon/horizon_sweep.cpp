@@ -1,0 +1,24 @@
+#include "engine/horizon/horizon_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cullcheck {
+
+double shadow_slope(ShadowRule rule, const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span) {
+  const Vec2 e = plan(eye);
+  const double rise = prism.height - eye.z;
+  if (rule == ShadowRule::thesis || rise >= 0.0) {
+    const double d1 = length(prism.ring[span.first_tangent] - e);
+    const double d2 = length(prism.ring[span.last_tangent] - e);
+    return std::min(rise / d1, rise / d2);
+  }
+  return rise / min_far_chain_distance(prism.ring, e);
+}
+
+double unclipped_distance(const Camera& camera) {
+  if (camera.omnidirectional()) return 0.0;
+  return camera.near * std::sqrt(1.0 + std::pow(std::tan(camera.hfov / 2), 2) + std::pow(std::tan(camera.vfov / 2), 2));
+}
+
+}  // namespace cullcheck
