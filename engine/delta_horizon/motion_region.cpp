@@ -125,26 +125,37 @@ struct RegionBounds {
   }
 
   // A CVP's highest slope, lowered to its minimum over the region, with its span narrowed: every
-  // camera's span holds the narrowed one (see shrunk_shadow), and the CVP reaches at least
+  // camera's span holds the narrowed one (see narrowed), and the CVP reaches at least
   // this slope over it. Empty when nothing is left.
-  std::optional<std::pair<AzimuthSpan, double>> lowered_item(const ConvexSpan& span, double top, double near,
-                                                             double far) const {
+  std::optional<std::pair<AzimuthSpan, double>> lowered_item(const std::vector<Vec2>& ring, const ConvexSpan& span,
+                                                             double top, double near, double far) const {
     if (!beyond_reach(near) || !(narrow(far) > widen(eps))) return std::nullopt;
-    const double shift = azimuth_shift(eps, narrow(near));
-    const AzimuthSpan s{span.span.begin + shift, span.span.end - shift};
-    if (!(s.end > s.begin) || !(span.span.end - span.span.begin + 2 * shift < kPi - 1e-6)) return std::nullopt;
+    const auto s = narrowed(ring, span);
+    if (!s) return std::nullopt;
     const double rise = top - (a.z + zeta);
     const double slope = rise >= 0.0 ? rise / widen(near + eps) : rise / (narrow(far) - widen(eps));
-    return std::pair{s, narrow(slope)};
+    return std::pair{*s, narrow(slope)};
+  }
+
+  // A CVP's span as every camera of the region at least sees it: the tangent vertices seen from
+  // a2 at azimuths b and e (distances r_b, r_e) move to b', e' within asin(ε / r) each; the CVP's
+  // directions from any eye of the region form one arc shorter than half a turn holding b' and
+  // e', which (as the arc from b to e widened by both shifts stays under half a turn) is the arc
+  // from b' to e' and so holds [b + shift_b, e - shift_e]. Thesis Eq. 4-6 shrink by the same
+  // angles; this is why they hold. Empty when nothing is left.
+  std::optional<AzimuthSpan> narrowed(const std::vector<Vec2>& ring, const ConvexSpan& span) const {
+    const double rb = length(ring[span.first_tangent] - a2), re = length(ring[span.last_tangent] - a2);
+    if (!beyond_reach(rb) || !beyond_reach(re)) return std::nullopt;
+    const double shift_b = azimuth_shift(eps, narrow(rb)), shift_e = azimuth_shift(eps, narrow(re));
+    const AzimuthSpan s{span.span.begin + shift_b, span.span.end - shift_e};
+    if (!(s.end > s.begin) || !(span.span.end - span.span.begin + shift_b + shift_e < kPi - 1e-6)) return std::nullopt;
+    return s;
   }
 
   // A CVP's shadow as every camera of the region at least casts it (OH(OS)'s conservative rule).
   // Empty when nothing is left, or when the CVP may come nearer than `unclipped` (it may then
   // not be used as an occluder, see horizon_sweep.hpp).
-  // Span: the tangent points seen from a2 at azimuths b and e move to b', e' within `shift`; the
-  // CVP's directions from any eye of the region form one arc shorter than half a turn holding
-  // b' and e', which (as e - b + 2 shift < pi) is the arc from b' to e' and so holds
-  // [b + shift, e - shift].
+  // Span: see narrowed().
   // Slope: with the lowest rise r = height - (a.z + ζ): if r >= 0 the rule's value is at least
   // r over the farthest vertex distance (the tangent vertices are no farther), which is at most
   // max_vertex + ε; if r < 0, at least r over the far-chain distance, which is at least the
@@ -153,12 +164,11 @@ struct RegionBounds {
                                                               double min_boundary, double max_vertex,
                                                               double unclipped) const {
     if (!(narrow(min_boundary) - widen(eps) > widen(unclipped))) return std::nullopt;
-    const double shift = azimuth_shift(eps, narrow(min_boundary));
-    const AzimuthSpan s{span.span.begin + shift, span.span.end - shift};
-    if (!(s.end > s.begin) || !(span.span.end - span.span.begin + 2 * shift < kPi - 1e-6)) return std::nullopt;
+    const auto s = narrowed(prism.ring, span);
+    if (!s) return std::nullopt;
     const double rise = prism.height - (a.z + zeta);
     const double slope = rise >= 0.0 ? rise / widen(max_vertex + eps) : rise / (narrow(min_boundary) - widen(eps));
-    return std::pair{s, narrow(slope)};
+    return std::pair{*s, narrow(slope)};
   }
 
   // A CVP's shadow as no camera of the region casts it higher: the span widened, the slope at
@@ -278,7 +288,7 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
       for (std::size_t p = 0; p < building.prisms.size(); ++p) {
         const PrismView& view = prism_views[candidates[i].first_prism + p];
         if (!view.span) continue;
-        const auto low = bounds.lowered_item(*view.span, building.prisms[p].height, view.near, view.far);
+        const auto low = bounds.lowered_item(building.prisms[p].ring, *view.span, building.prisms[p].height, view.near, view.far);
         if (!low) continue;
         const auto bins = overlap(low->first, *covered);
         if (bins && grown_.min_over(*bins) <= low->second) {
