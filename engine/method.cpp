@@ -6,9 +6,19 @@
 #include "engine/delta_horizon/thesis_delta_horizon.hpp"
 #include "engine/frustum/view_frustum_culling.hpp"
 #include "engine/horizon/object_space_horizon.hpp"
+#include "engine/shrinking/region_shrinking.hpp"
 #include "engine/image_space/image_space_horizon.hpp"
 
 namespace cullcheck {
+namespace {
+
+std::invalid_argument unknown(std::string_view kind, std::string_view name, const std::vector<std::string>& names) {
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  return std::invalid_argument("unknown " + std::string(kind) + " '" + std::string(name) + "' (known: " + known + ")");
+}
+
+}  // namespace
 
 std::vector<std::string> method_names() { return {"frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded"}; }
 
@@ -20,9 +30,16 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
     return std::make_unique<ObjectSpaceHorizonCulling>(scene, ShadowRule::conservative, options);
   if (name == "delta_h_thesis") return std::make_unique<ThesisDeltaHorizonCulling>(scene, options);
   if (name == "delta_h_guarded") return std::make_unique<GuardedDeltaHorizonCulling>(scene, options);
-  std::string known;
-  for (const auto& n : method_names()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown method '" + std::string(name) + "' (known: " + known + ")");
+  throw unknown("method", name, method_names());
+}
+
+std::vector<std::string> region_method_names() { return {"shrink_adjustable_thesis", "shrink_adjustable_conservative"}; }
+
+std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, const Scene& scene,
+                                                        const MethodOptions& options) {
+  if (name == "shrink_adjustable_thesis") return std::make_unique<PublishedShadowShrinking>(scene, options);
+  if (name == "shrink_adjustable_conservative") return std::make_unique<CertifiedShadowShrinking>(scene, options);
+  throw unknown("region method", name, region_method_names());
 }
 
 }  // namespace cullcheck

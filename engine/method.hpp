@@ -56,9 +56,32 @@ struct MethodOptions {
   double delta_turn = 0.05;   // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
 };
 
+// A from-region query (thesis ch. 4): every camera whose eye lies within `radius` of
+// camera.position in plan, at the same height, with camera's fields of view and clip planes,
+// turned from camera by at most `turn` (|Δyaw| + |Δpitch| + |Δroll|, radians; Fig. 4.8's
+// widened frustum). A from-region PVS holds every building visible from any of them.
+struct ViewRegion {
+  Camera camera;
+  double radius = 0.0;
+  double turn = 0.0;
+};
+
+class RegionCullingMethod {
+ public:
+  virtual ~RegionCullingMethod() = default;
+  virtual std::string name() const = 0;
+  // Whether the method claims oracle-witnessed ⊆ PVS for every camera of the region.
+  virtual bool claims_conservative() const = 0;
+  virtual CullResult cull_region(const ViewRegion& region) = 0;
+};
+
 // Names accepted by make_method, in report order.
 std::vector<std::string> method_names();
 // Throws std::invalid_argument naming the method when it is unknown.
 std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& scene, const MethodOptions& options = {});
+// The same for from-region methods (engine/shrinking/).
+std::vector<std::string> region_method_names();
+std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, const Scene& scene,
+                                                        const MethodOptions& options = {});
 
 }  // namespace cullcheck

@@ -39,45 +39,6 @@ std::optional<AzimuthSpan> overlap(const AzimuthSpan& a, const AzimuthSpan& b) {
   return std::nullopt;
 }
 
-// Plane tests over the region's view volumes. For a camera of the region, a plane's normal n'
-// is within `turn` of the anchor's n (|n' - n| <= turn) and its eye e' within `reach` of the
-// anchor's a, so for any point p:
-//   |(n'.(p - e') - k) - (n.(p - a) - k)| <= turn |p - a| + reach.
-// certainly_meets: for every plane the box's deepest corner stays inside, so OH(OS) at any
-// camera of the region does not cull the box by its view volume.
-// may_meet: false only when for some plane the whole box stays outside for every camera.
-bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, double turn) {
-  if (volume.omnidirectional) {
-    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
-    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
-    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
-    return widen(std::sqrt(dx * dx + dy * dy + dz * dz) + reach) < volume.far;
-  }
-  for (int i = 0; i < volume.plane_count; ++i) {
-    const Vec3& n = volume.planes[i].n;
-    const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
-    if (narrow(volume.planes[i].signed_distance(corner)) < widen(turn * length(corner - volume.eye) + reach)) return false;
-  }
-  return true;
-}
-bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double turn) {
-  const double far_extent = length(Vec3{std::max(std::abs(box.lo.x - volume.eye.x), std::abs(box.hi.x - volume.eye.x)),
-                                        std::max(std::abs(box.lo.y - volume.eye.y), std::abs(box.hi.y - volume.eye.y)),
-                                        std::max(std::abs(box.lo.z - volume.eye.z), std::abs(box.hi.z - volume.eye.z))});
-  if (volume.omnidirectional) {
-    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
-    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
-    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
-    return narrow(std::sqrt(dx * dx + dy * dy + dz * dz) - reach) <= volume.far;
-  }
-  for (int i = 0; i < volume.plane_count; ++i) {
-    const Vec3& n = volume.planes[i].n;
-    const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
-    if (widen(volume.planes[i].signed_distance(corner) + turn * far_extent + reach) < 0.0) return false;
-  }
-  return true;
-}
-
 // Azimuths that every camera of the region covers (so OH(OS) never starts a bin touching them at
 // +inf): those of the anchor's pyramid narrowed by k on every side. A direction inside the
 // narrowed pyramid is at least asin(c sin k) from each original plane, c = min(cos(hfov/2),
@@ -198,6 +159,45 @@ struct Candidate {
 };
 
 }  // namespace
+
+// Plane tests over the region's view volumes. For a camera of the region, a plane's normal n'
+// is within `turn` of the anchor's n (|n' - n| <= turn) and its eye e' within `reach` of the
+// anchor's a, so for any point p:
+//   |(n'.(p - e') - k) - (n.(p - a) - k)| <= turn |p - a| + reach.
+// certainly_meets: for every plane the box's deepest corner stays inside, so OH(OS) at any
+// camera of the region does not cull the box by its view volume.
+// may_meet: false only when for some plane the whole box stays outside for every camera.
+bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, double turn) {
+  if (volume.omnidirectional) {
+    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
+    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
+    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
+    return widen(std::sqrt(dx * dx + dy * dy + dz * dz) + reach) < volume.far;
+  }
+  for (int i = 0; i < volume.plane_count; ++i) {
+    const Vec3& n = volume.planes[i].n;
+    const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
+    if (narrow(volume.planes[i].signed_distance(corner)) < widen(turn * length(corner - volume.eye) + reach)) return false;
+  }
+  return true;
+}
+bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double turn) {
+  const double far_extent = length(Vec3{std::max(std::abs(box.lo.x - volume.eye.x), std::abs(box.hi.x - volume.eye.x)),
+                                        std::max(std::abs(box.lo.y - volume.eye.y), std::abs(box.hi.y - volume.eye.y)),
+                                        std::max(std::abs(box.lo.z - volume.eye.z), std::abs(box.hi.z - volume.eye.z))});
+  if (volume.omnidirectional) {
+    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
+    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
+    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
+    return narrow(std::sqrt(dx * dx + dy * dy + dz * dz) - reach) <= volume.far;
+  }
+  for (int i = 0; i < volume.plane_count; ++i) {
+    const Vec3& n = volume.planes[i].n;
+    const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
+    if (widen(volume.planes[i].signed_distance(corner) + turn * far_extent + reach) < 0.0) return false;
+  }
+  return true;
+}
 
 bool MotionRegion::contains(const Camera& c) const {
   const Camera& a = anchor;

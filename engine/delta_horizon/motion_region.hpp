@@ -53,6 +53,13 @@ struct MotionRegion {
   bool contains(const Camera& camera) const;
 };
 
+// View-volume tests over a region: the cameras whose eye lies within `reach` of `volume`'s and
+// whose orientation is within `turn` radians of its camera's. certainly_meets: OH(OS) at every
+// such camera tests the box (does not cull it by its view volume); may_meet: false only when
+// every such camera culls it.
+bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, double turn);
+bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double turn);
+
 class RegionCertificate {
  public:
   RegionCertificate(const Scene& scene, const Quadtree& quadtree, std::uint32_t bins);

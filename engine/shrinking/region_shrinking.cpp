@@ -1,0 +1,124 @@
+#include "engine/shrinking/region_shrinking.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+
+#include "engine/horizon/horizon_sweep.hpp"
+
+namespace cullcheck {
+namespace {
+
+// The published shrunk shadow of one CVP seen from the disc's centre C (thesis Eq. 1-16), or
+// none when nothing is left of it. `span` is its span from C; the elevation β_min is the
+// published rule's (the lower of the two tangent vertices) and d_X that vertex's distance.
+struct ShrunkShadow {
+  AzimuthSpan span;
+  double slope;
+};
+std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span,
+                                                    double epsilon) {
+  const Vec2 c = plan(eye);
+  const double to_e = length(prism.ring[span.first_tangent] - c);  // |CE|, E at α_min
+  const double to_a = length(prism.ring[span.last_tangent] - c);   // |AC|, A at α_max
+  if (!(to_e > epsilon) || !(to_a > epsilon)) return std::nullopt;  // Eq. 4-5 undefined
+  // Eq. 4-6.
+  const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a)};
+  if (!(shrunk.end > shrunk.begin)) return std::nullopt;
+  // β_min and the distance of the vertex that gives it.
+  const double h_x = prism.height, h_c = eye.z;
+  const double rise = h_x - h_c;
+  const double d = rise / to_e <= rise / to_a ? to_e : to_a;
+  const double beta_min = std::atan2(rise, d);
+  double beta_f, beta_n;
+  if (h_x < h_c) {  // Eq. 13-14, as printed (h_C + h_X)
+    beta_f = std::atan2(d, h_c + h_x);
+    beta_n = std::atan2(d - epsilon, h_c + h_x);
+  } else {  // Eq. 9-10
+    beta_f = std::atan2(epsilon + d, rise);
+    beta_n = std::atan2(d, rise);
+  }
+  const double beta_s = beta_f - beta_n;          // Eq. 11
+  const double beta_min_s = beta_min - beta_s;    // Eq. 12
+  if (!(beta_min_s > -kPi / 2)) return std::nullopt;
+  return ShrunkShadow{shrunk, std::tan(beta_min_s)};
+}
+
+}  // namespace
+
+PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options)
+    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+
+// The OH(OS) sweep from the centre with the region's view volumes (Fig. 4.8: the frustum widened
+// to every camera of the region; the horizon is kept over the full circle, which only hides
+// less than the widened frustum's coverage would) and every shadow shrunk as published.
+CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) {
+  const auto start = std::chrono::steady_clock::now();
+  CullResult result;
+  CullStatistics& stats = result.stats;
+  const Camera& camera = region.camera;
+  const ViewVolume volume(camera);
+  const Vec3 eye = camera.position;
+  const Vec2 e = plan(eye);
+  const double unclipped = unclipped_distance(camera);
+  horizon_.reset();
+  horizon_.take_node_visits();
+  std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
+  ShadowQueue pending;
+  std::vector<std::optional<ConvexSpan>> spans;
+  const auto& cells = quadtree_.cells();
+  if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
+  while (!sweep.empty()) {
+    const SweepItem item = sweep.top();
+    sweep.pop();
+    pending.merge_nearer_than(item.distance, horizon_, stats);
+    if (!item.is_building) {
+      const Quadtree::Cell& cell = cells[item.index];
+      ++stats.cells_tested;
+      const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
+      if (!may_meet(volume, box, region.radius, region.turn) || box_hidden(horizon_, cell.bounds, cell.max_height, eye))
+        continue;
+      quadtree_.for_each_child(
+          cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
+          [&](std::uint32_t b) { sweep.push({min_distance(e, scene_.buildings[b].bounds.plan()), true, b}); });
+      continue;
+    }
+    const Building& building = scene_.buildings[item.index];
+    ++stats.buildings_tested;
+    if (!may_meet(volume, building.bounds, region.radius, region.turn) ||
+        box_hidden(horizon_, building.bounds.plan(), building.height, eye) || !prisms_visible(horizon_, building, eye, spans))
+      continue;
+    result.pvs.push_back(building.id);
+    const bool may_be_clipped = item.distance < unclipped;
+    for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+      const ConvexVerticalPrism& prism = building.prisms[p];
+      if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
+      const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
+      if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
+    }
+  }
+  stats.horizon_nodes = horizon_.take_node_visits();
+  std::sort(result.pvs.begin(), result.pvs.end());
+  stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+CertifiedShadowShrinking::CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options)
+    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), certificate_(scene, quadtree_, options.horizon_bins) {}
+
+// The PVS: every building the certificate could not mark hidden (certainly visible or
+// uncertain); buildings certainly outside every view volume of the region are not in it.
+CullResult CertifiedShadowShrinking::cull_region(const ViewRegion& region) {
+  const auto start = std::chrono::steady_clock::now();
+  CullResult result;
+  certificate_.certify(MotionRegion{region.camera, region.radius, 0.0, region.turn}, result.stats);
+  for (std::uint32_t b : certificate_.visible()) result.pvs.push_back(scene_.buildings[b].id);
+  for (std::uint32_t b : certificate_.swept())
+    if (!certificate_.certainly_visible(b)) result.pvs.push_back(scene_.buildings[b].id);
+  std::sort(result.pvs.begin(), result.pvs.end());
+  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace cullcheck

@@ -1,0 +1,54 @@
+// From-region PVS by occluder-shadow shrinking (thesis ch. 4.1.2, "adjustable shrinking"): a PVS
+// computed at a point that holds for every viewpoint of the ε-disc around it (ViewRegion).
+//
+// Two variants over the same front-to-back sweep as OH(OS):
+//  - shrink_adjustable_thesis — as published. Buildings are tested from the disc's centre as in
+//    OH(OS) (the published shadow rule, β_min from the two tangent vertices); each visible CVP's
+//    shadow is shrunk before it enters the horizon: horizontally by Eq. 4-6, α_max - asin(ε/|AC|)
+//    and α_min + asin(ε/|CE|) for the tangent vertices A (at α_max) and E (at α_min); vertically by
+//    Eq. 9-12 for occluders taller than the eye (β_s = atan((ε + d)/(h_X - h_C)) - atan(d/(h_X -
+//    h_C))) and Eq. 13-14 for lower ones (β_F = atan(d/(h_C + h_X)), β_N = atan((d - ε)/(h_C +
+//    h_X)), with h_C + h_X as printed), β_min,s = β_min - β_s, d the distance of the vertex that
+//    gives β_min. The view volume is widened to the union of the region's (Fig. 4.8 f2/f3).
+//    Claim (as published): conservative for the disc. Held to the oracle in
+//    properties/region_shrinking_test.cpp.
+//  - shrink_adjustable_conservative — the bounds the guarded ΔH proves (engine/delta_horizon/
+//    motion_region.hpp, with no vertical motion): the PVS is every building that may meet some
+//    camera's view volume and that OH(OS) (conservative rule) does not cull from every camera
+//    of the region; conservative wherever OH(OS) is.
+#pragma once
+
+#include "engine/delta_horizon/motion_region.hpp"
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/method.hpp"
+#include "engine/spatial/quadtree.hpp"
+
+namespace cullcheck {
+
+class PublishedShadowShrinking final : public RegionCullingMethod {
+ public:
+  PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {});
+  std::string name() const override { return "shrink_adjustable_thesis"; }
+  bool claims_conservative() const override { return false; }
+  CullResult cull_region(const ViewRegion& region) override;
+
+ private:
+  const Scene& scene_;
+  Quadtree quadtree_;
+  OcclusionHorizon horizon_;
+};
+
+class CertifiedShadowShrinking final : public RegionCullingMethod {
+ public:
+  CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options = {});
+  std::string name() const override { return "shrink_adjustable_conservative"; }
+  bool claims_conservative() const override { return true; }
+  CullResult cull_region(const ViewRegion& region) override;
+
+ private:
+  const Scene& scene_;
+  Quadtree quadtree_;
+  RegionCertificate certificate_;
+};
+
+}  // namespace cullcheck
