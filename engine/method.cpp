@@ -33,10 +33,11 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
   throw unknown("method", name, method_names());
 }
 
-std::vector<std::string> region_method_names() { return {"shrink_adjustable_thesis", "shrink_adjustable_conservative"}; }
+std::vector<std::string> region_method_names() { return {"shrink_former", "shrink_adjustable_thesis", "shrink_adjustable_conservative"}; }
 
 std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, const Scene& scene,
                                                         const MethodOptions& options) {
+  if (name == "shrink_former") return std::make_unique<FootprintShrinking>(scene, options);
   if (name == "shrink_adjustable_thesis") return std::make_unique<PublishedShadowShrinking>(scene, options);
   if (name == "shrink_adjustable_conservative") return std::make_unique<CertifiedShadowShrinking>(scene, options);
   throw unknown("region method", name, region_method_names());

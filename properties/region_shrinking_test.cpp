@@ -11,6 +11,7 @@
 
 #include "core/scene_io.hpp"
 #include "engine/method.hpp"
+#include "engine/shrinking/region_shrinking.hpp"
 #include "generators/rapidcheck_gens.hpp"
 #include "oracle/oracle.hpp"
 #include "properties/property_oracle.hpp"
@@ -100,6 +101,39 @@ RC_GTEST_PROP(RegionShrinking, RegionPvsHoldsTheCentresPvs, ()) {
                 return o.str();
               }());
   }
+}
+
+RC_GTEST_PROP(RegionShrinking, FormerShrinkingHoldsOverTheDisc, ()) {
+  const RegionCase r = *region_case(rcgen::scene_spec());
+  const Scene scene = generators::scene_of(r.scene_case.spec);
+  RC_PRE(!scene.buildings.empty());
+  const auto miss = region_miss("shrink_former", scene, r);
+  if (miss) RC_FAIL(describe(r, *miss, "shrink_former"));
+}
+
+// Footprint shrinking moves every edge inward by ε: a 10 m square becomes an 8 m one for ε = 1 m;
+// a 1 m slab disappears for ε = 0.6 m; a sharp corner moves by more than ε (Fig. 4.3).
+TEST(FootprintShrinking, MovesEdgesInwardAndDropsThinOccluders) {
+  const auto square = shrink_convex_ring({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, 1.0);
+  ASSERT_TRUE(square.has_value());
+  double lo_x = 1e9, hi_x = -1e9, lo_y = 1e9, hi_y = -1e9;
+  for (Vec2 p : *square) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+  EXPECT_NEAR(lo_x, 1.0, 1e-12);
+  EXPECT_NEAR(hi_x, 9.0, 1e-12);
+  EXPECT_NEAR(lo_y, 1.0, 1e-12);
+  EXPECT_NEAR(hi_y, 9.0, 1e-12);
+  EXPECT_FALSE(shrink_convex_ring({{0, 0}, {20, 0}, {20, 1}, {0, 1}}, 0.6).has_value());
+  const auto thin = shrink_convex_ring({{0, 0}, {20, 0}, {20, 1}, {0, 1}}, 0.4);
+  ASSERT_TRUE(thin.has_value());
+  // A 10-degree wedge: its tip moves by 1 / sin(5 degrees) = 11.5 m for ε = 1 m.
+  const double tip_angle = 10.0 * kPi / 180;
+  const std::vector<Vec2> wedge{{0, 0}, {100 * std::cos(tip_angle / 2), -100 * std::sin(tip_angle / 2)},
+                                {100 * std::cos(tip_angle / 2), 100 * std::sin(tip_angle / 2)}};
+  const auto shrunk = shrink_convex_ring(wedge, 1.0);
+  ASSERT_TRUE(shrunk.has_value());
+  double tip = 1e9;
+  for (Vec2 p : *shrunk) tip = std::min(tip, p.x);
+  EXPECT_NEAR(tip, 1.0 / std::sin(tip_angle / 2), 1e-9);
 }
 
 RC_GTEST_PROP(RegionShrinking, CertifiedShrinkingHoldsOverTheDisc, ()) {

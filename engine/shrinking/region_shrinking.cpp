@@ -45,15 +45,14 @@ std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& p
   return ShrunkShadow{shrunk, std::tan(beta_min_s)};
 }
 
-}  // namespace
-
-PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
-
-// The OH(OS) sweep from the centre with the region's view volumes (Fig. 4.8: the frustum widened
-// to every camera of the region; the horizon is kept over the full circle, which only hides
-// less than the widened frustum's coverage would) and every shadow shrunk as published.
-CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) {
+// The OH(OS) sweep from the region's centre, culling by the region's view volumes (Fig. 4.8: the
+// frustum widened to every camera of the region; the horizon is kept over the full circle, which
+// only hides less than the widened frustum's coverage would). Buildings are tested with their
+// own CVPs; `cast(pending, building index, eye, nearest distance, unclipped, spans)` queues the
+// shadows of a visible one, as the variant shrinks them.
+template <class CastShadows>
+CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
+                        CastShadows&& cast) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
   CullStatistics& stats = result.stats;
@@ -62,46 +61,121 @@ CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) {
   const Vec3 eye = camera.position;
   const Vec2 e = plan(eye);
   const double unclipped = unclipped_distance(camera);
-  horizon_.reset();
-  horizon_.take_node_visits();
+  horizon.reset();
+  horizon.take_node_visits();
   std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
   ShadowQueue pending;
   std::vector<std::optional<ConvexSpan>> spans;
-  const auto& cells = quadtree_.cells();
+  const auto& cells = quadtree.cells();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
   while (!sweep.empty()) {
     const SweepItem item = sweep.top();
     sweep.pop();
-    pending.merge_nearer_than(item.distance, horizon_, stats);
+    pending.merge_nearer_than(item.distance, horizon, stats);
     if (!item.is_building) {
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!may_meet(volume, box, region.radius, region.turn) || box_hidden(horizon_, cell.bounds, cell.max_height, eye))
-        continue;
-      quadtree_.for_each_child(
+      if (!may_meet(volume, box, region.radius, region.turn) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
+      quadtree.for_each_child(
           cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
-          [&](std::uint32_t b) { sweep.push({min_distance(e, scene_.buildings[b].bounds.plan()), true, b}); });
+          [&](std::uint32_t b) { sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b}); });
       continue;
     }
-    const Building& building = scene_.buildings[item.index];
+    const Building& building = scene.buildings[item.index];
     ++stats.buildings_tested;
     if (!may_meet(volume, building.bounds, region.radius, region.turn) ||
-        box_hidden(horizon_, building.bounds.plan(), building.height, eye) || !prisms_visible(horizon_, building, eye, spans))
+        box_hidden(horizon, building.bounds.plan(), building.height, eye) || !prisms_visible(horizon, building, eye, spans))
       continue;
     result.pvs.push_back(building.id);
-    const bool may_be_clipped = item.distance < unclipped;
-    for (std::size_t p = 0; p < building.prisms.size(); ++p) {
-      const ConvexVerticalPrism& prism = building.prisms[p];
-      if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-      const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
-      if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
-    }
+    cast(pending, item.index, eye, item.distance, unclipped, spans);
   }
-  stats.horizon_nodes = horizon_.take_node_visits();
+  stats.horizon_nodes = horizon.take_node_visits();
   std::sort(result.pvs.begin(), result.pvs.end());
   stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+}  // namespace
+
+PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options)
+    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+
+CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) {
+  return sweep_region(scene_, quadtree_, horizon_, region,
+                      [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
+                          const std::vector<std::optional<ConvexSpan>>& spans) {
+                        const Building& building = scene_.buildings[index];
+                        const Vec2 e = plan(eye);
+                        const bool may_be_clipped = distance < unclipped;
+                        for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+                          const ConvexVerticalPrism& prism = building.prisms[p];
+                          if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
+                          const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
+                          if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
+                        }
+                      });
+}
+
+FootprintShrinking::FootprintShrinking(const Scene& scene, const MethodOptions& options)
+    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+
+// Wonka et al.'s shrinking as ch. 4.1.1 describes it: each occluder's footprint moved inward by ε
+// in a preprocessing step (here: per CVP, cached per ε), shadows cast by the shrunk CVPs with
+// OH(OS)'s conservative rule, everything tested unshrunk from the centre. Why it holds: a sight
+// line from the centre C to a point p that passes through a shrunk CVP at q, and the sight line
+// from any eye within ε of C (same height) to p, are at the same height at the same fraction of
+// the way and at most ε apart in plan there, so the latter passes through the unshrunk CVP.
+CullResult FootprintShrinking::cull_region(const ViewRegion& region) {
+  if (!shrunk_radius_ || *shrunk_radius_ != region.radius) {
+    shrunk_.assign(scene_.buildings.size(), {});
+    for (std::size_t b = 0; b < scene_.buildings.size(); ++b)
+      for (const ConvexVerticalPrism& prism : scene_.buildings[b].prisms) {
+        auto ring = shrink_convex_ring(prism.ring, region.radius);
+        if (ring) shrunk_[b].push_back({std::move(*ring), prism.height});
+      }
+    shrunk_radius_ = region.radius;
+  }
+  return sweep_region(scene_, quadtree_, horizon_, region,
+                      [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
+                          const std::vector<std::optional<ConvexSpan>>&) {
+                        const Vec2 e = plan(eye);
+                        const bool may_be_clipped = distance < unclipped;
+                        for (const ConvexVerticalPrism& prism : shrunk_[index]) {
+                          const auto span = convex_span(prism.ring, e);
+                          if (!span || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
+                          pending.push(max_vertex_distance(prism.ring, e), span->span,
+                                       shadow_slope(ShadowRule::conservative, prism, eye, *span));
+                        }
+                      });
+}
+
+std::optional<std::vector<Vec2>> shrink_convex_ring(const std::vector<Vec2>& ring, double by) {
+  // Clip the ring by each edge's half-plane moved inward by `by` (Sutherland-Hodgman; a convex
+  // ring stays convex and counter-clockwise).
+  std::vector<Vec2> out = ring, next;
+  const std::size_t n = ring.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 a = ring[j], d = ring[i] - ring[j];
+    const double len = length(d);
+    if (len == 0.0) continue;
+    const Vec2 inward{-d.y / len, d.x / len};  // left of a counter-clockwise edge is inside
+    auto depth = [&](Vec2 p) { return dot(p - a, inward) - by; };  // >= 0: kept
+    next.clear();
+    for (std::size_t k = 0, m = out.size(); k < m; ++k) {
+      const Vec2 p = out[k], q = out[(k + 1) % m];
+      const double dp = depth(p), dq = depth(q);
+      if (dp >= 0.0) next.push_back(p);
+      if ((dp >= 0.0) != (dq >= 0.0)) next.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+    out.swap(next);
+    if (out.size() < 3) return std::nullopt;
+  }
+  // Drop a sliver: every edge of what is left must have some length and area must be positive.
+  double area = 0.0;
+  for (std::size_t k = 0, m = out.size(); k < m; ++k) area += cross(out[k], out[(k + 1) % m]);
+  if (!(area > 1e-12)) return std::nullopt;
+  return out;
 }
 
 CertifiedShadowShrinking::CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options)

@@ -1,7 +1,7 @@
 // From-region PVS by occluder-shadow shrinking (thesis ch. 4.1.2, "adjustable shrinking"): a PVS
 // computed at a point that holds for every viewpoint of the ε-disc around it (ViewRegion).
 //
-// Two variants over the same front-to-back sweep as OH(OS):
+// Three variants over the same front-to-back sweep as OH(OS):
 //  - shrink_adjustable_thesis — as published. Buildings are tested from the disc's centre as in
 //    OH(OS) (the published shadow rule, β_min from the two tangent vertices); each visible CVP's
 //    shadow is shrunk before it enters the horizon: horizontally by Eq. 4-6, α_max - asin(ε/|AC|)
@@ -12,11 +12,19 @@
 //    gives β_min. The view volume is widened to the union of the region's (Fig. 4.8 f2/f3).
 //    Claim (as published): conservative for the disc. Held to the oracle in
 //    properties/region_shrinking_test.cpp.
+//  - shrink_former — Wonka et al.'s occluder shrinking as ch. 4.1.1 describes it: every CVP's
+//    footprint moved inward by ε beforehand (so occluders thinner than 2ε vanish and sharp
+//    corners over-shrink, Fig. 4.3), shadows with OH(OS)'s conservative rule, the eye's height
+//    fixed. A non-convex footprint is shrunk CVP by CVP, which also moves the edges between its
+//    CVPs: more shrinking than the footprint's own offset, so never less conservative.
 //  - shrink_adjustable_conservative — the bounds the guarded ΔH proves (engine/delta_horizon/
 //    motion_region.hpp, with no vertical motion): the PVS is every building that may meet some
 //    camera's view volume and that OH(OS) (conservative rule) does not cull from every camera
 //    of the region; conservative wherever OH(OS) is.
 #pragma once
+
+#include <optional>
+#include <vector>
 
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
@@ -37,6 +45,25 @@ class PublishedShadowShrinking final : public RegionCullingMethod {
   Quadtree quadtree_;
   OcclusionHorizon horizon_;
 };
+
+class FootprintShrinking final : public RegionCullingMethod {
+ public:
+  FootprintShrinking(const Scene& scene, const MethodOptions& options = {});
+  std::string name() const override { return "shrink_former"; }
+  bool claims_conservative() const override { return true; }
+  CullResult cull_region(const ViewRegion& region) override;
+
+ private:
+  const Scene& scene_;
+  Quadtree quadtree_;
+  OcclusionHorizon horizon_;
+  std::optional<double> shrunk_radius_;
+  std::vector<std::vector<ConvexVerticalPrism>> shrunk_;  // per building: its CVPs shrunk by ε
+};
+
+// A convex counter-clockwise ring with every edge moved inward by `by`; empty when nothing is
+// left (an occluder thinner than 2 * by disappears).
+std::optional<std::vector<Vec2>> shrink_convex_ring(const std::vector<Vec2>& ring, double by);
 
 class CertifiedShadowShrinking final : public RegionCullingMethod {
  public:
