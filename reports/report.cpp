@@ -74,6 +74,8 @@ std::uint64_t conservative_violations(const PathVerification& v) {
   std::uint64_t n = 0;
   for (const MethodRun& r : v.runs)
     if (r.claims_conservative) n += r.violation_count;
+  for (const RegionRun& r : v.regions)
+    if (r.claims_conservative) n += r.violation_count;
   return n;
 }
 
@@ -147,6 +149,29 @@ nlohmann::json build_report(const ReportInputs& in) {
   }
   report["runs"] = runs;
   report["speedups"] = speedups_json(v);
+  json regions = json::array();
+  for (const RegionRun& r : v.regions) {
+    json violations = json::array();
+    for (const Violation& x : r.violations)
+      violations.push_back({{"frame", x.frame}, {"building", x.building}, {"model", x.model}, {"witness", x.witness}, {"replay", x.replay}});
+    const double pvs = mean(r.pvs_size), point = mean(r.point_pvs_size);
+    regions.push_back({{"method", r.method},
+                       {"claims_conservative", r.claims_conservative},
+                       {"radius", r.radius},
+                       {"turn", r.turn},
+                       {"pvs_computed", r.compute_ms.size()},
+                       {"frames_per_pvs", ratio(static_cast<double>(r.pvs_size.size()), static_cast<double>(r.compute_ms.size()))},
+                       {"compute_ms_median", median(r.compute_ms)},
+                       {"compute_ms_p95", percentile(r.compute_ms, 95)},
+                       {"pvs_mean", pvs},
+                       {"point_pvs_mean", r.point_pvs_size.empty() ? json(nullptr) : json(point)},
+                       {"increase_over_point_pvs", r.point_pvs_size.empty() ? json(nullptr) : json(ratio(pvs, point) - 1.0)},
+                       {"witnessed_mean", mean(r.witnessed_size)},
+                       {"violations", r.violation_count},
+                       {"frames_with_violations", r.frames_with_violations},
+                       {"violation_replays", violations}});
+  }
+  report["regions"] = regions;
   json claims = json::array();
   for (const ClaimCheck& c : in.claims) claims.push_back(to_json(c));
   report["claims"] = claims;
@@ -166,6 +191,14 @@ std::string summary_table(const PathVerification& v) {
     std::snprintf(line, sizeof line, "%-20s %7zu %9.3f %9.3f %9.1f %10.1f %8.2f %10llu%s\n", r.method.c_str(),
                   r.cull_ms.size(), median(r.cull_ms), percentile(r.cull_ms, 95), mean(r.pvs_size), witnessed,
                   ratio(mean(r.checked_pvs_size), witnessed), static_cast<unsigned long long>(r.violation_count),
+                  r.claims_conservative ? "" : " (not claimed conservative)");
+    out += line;
+  }
+  for (const RegionRun& r : v.regions) {
+    const double point = mean(r.point_pvs_size);
+    std::snprintf(line, sizeof line, "region %s (radius %.2f m): %zu PVS over %zu frames, PVS %.1f (%+.0f%% over the point PVS), %llu violations%s\n",
+                  r.method.c_str(), r.radius, r.compute_ms.size(), r.pvs_size.size(), mean(r.pvs_size),
+                  point > 0 ? (mean(r.pvs_size) / point - 1.0) * 100 : 0.0, static_cast<unsigned long long>(r.violation_count),
                   r.claims_conservative ? "" : " (not claimed conservative)");
     out += line;
   }

@@ -1,7 +1,9 @@
 #include "reports/verification.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
+#include <optional>
 
 #include "core/scene_io.hpp"
 
@@ -19,7 +21,28 @@ std::string replay_command(const SceneSource& source, const std::string& method,
   return "cullcheck verify " + source.replay_flags() + " --method " + method + " --camera " + shell_quote(camera_json);
 }
 
+std::string region_replay_command(const SceneSource& source, const std::string& method, const Camera& centre,
+                                  double radius, double turn, const Camera& viewpoint) {
+  auto text = [](const Camera& c) {
+    std::string t = camera_to_json_text(c);
+    if (!t.empty() && t.back() == '\n') t.pop_back();
+    return shell_quote(t);
+  };
+  return "cullcheck region " + source.replay_flags() + " --method " + method + " --camera " + text(centre) + " --radius " +
+         std::to_string(radius) + " --turn " + std::to_string(turn) + " --from " + text(viewpoint);
+}
+
 namespace {
+
+// Whether a camera is one of the region's: eye within the disc at its height, turned no more
+// than the region allows, same fields of view and clip planes.
+bool region_holds(const ViewRegion& region, const Camera& c) {
+  const Camera& a = region.camera;
+  if (c.hfov != a.hfov || c.vfov != a.vfov || c.near != a.near || c.far != a.far || c.position.z != a.position.z) return false;
+  if (length(plan(c.position) - plan(a.position)) > region.radius) return false;
+  if (a.omnidirectional()) return true;
+  return std::abs(std::remainder(c.yaw - a.yaw, kTwoPi)) + std::abs(c.pitch - a.pitch) + std::abs(c.roll - a.roll) <= region.turn;
+}
 
 // Violations of one method over a set of checked frames: all counted, the first few kept.
 struct ViolationTally {
@@ -53,6 +76,18 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     run.claims_conservative = engines.back()->claims_conservative();
     out.runs.push_back(std::move(run));
   }
+  std::vector<std::unique_ptr<RegionCullingMethod>> region_engines;
+  std::vector<std::optional<ViewRegion>> current(options.region_methods.size());
+  std::vector<std::vector<ObjectId>> region_pvs(options.region_methods.size());
+  for (const std::string& name : options.region_methods) {
+    region_engines.push_back(make_region_method(name, scene, method_options));
+    RegionRun run;
+    run.method = name;
+    run.claims_conservative = region_engines.back()->claims_conservative();
+    run.radius = options.region_radius;
+    run.turn = options.region_turn;
+    out.regions.push_back(std::move(run));
+  }
   const std::size_t reference =
       static_cast<std::size_t>(std::find(methods.begin(), methods.end(), options.reference_method) - methods.begin());
   const oracle::Oracle truth(scene);
@@ -72,6 +107,17 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.totals.occluders_applied += s.occluders_applied;
       run.totals.items_skipped += s.items_skipped;
       run.totals.guard_fires += s.guard_fires;
+    }
+    for (std::size_t m = 0; m < region_engines.size(); ++m) {
+      RegionRun& run = out.regions[m];
+      if (!current[m] || !region_holds(*current[m], camera)) {
+        current[m] = ViewRegion{camera, options.region_radius, options.region_turn};
+        const CullResult r = region_engines[m]->cull_region(*current[m]);
+        region_pvs[m] = r.pvs;
+        run.compute_ms.push_back(r.stats.cull_ms);
+      }
+      run.pvs_size.push_back(static_cast<double>(region_pvs[m].size()));
+      if (reference < engines.size()) run.point_pvs_size.push_back(static_cast<double>(results[reference].pvs.size()));
     }
     if (reference < engines.size())
       for (std::size_t m = 0; m < engines.size(); ++m) {
@@ -116,6 +162,26 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
                          : replay_command(source, run.method, camera);
           tally->kept.push_back(std::move(v));
         }
+      }
+    }
+    for (std::size_t m = 0; m < region_engines.size(); ++m) {
+      RegionRun& run = out.regions[m];
+      run.checked_pvs_size.push_back(static_cast<double>(region_pvs[m].size()));
+      run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
+      const std::vector<ObjectId> missed = missing_from(answer.visible, region_pvs[m]);
+      if (missed.empty()) continue;
+      run.violation_count += missed.size();
+      ++run.frames_with_violations;
+      for (ObjectId id : missed) {
+        if (run.violations.size() >= options.max_replays) break;
+        Violation v;
+        v.frame = frame;
+        v.building = id;
+        v.camera = camera;
+        v.model = answer.model;
+        if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
+        v.replay = region_replay_command(source, run.method, current[m]->camera, run.radius, run.turn, camera);
+        run.violations.push_back(std::move(v));
       }
     }
   }

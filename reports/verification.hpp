@@ -24,6 +24,12 @@ struct VerificationOptions {
   // Every run's PVS is compared with this method's at every frame (when it is in the run):
   // ΔH's claim is to give exactly OH(OS)'s PVS.
   std::string reference_method = "oh_os_conservative";
+  // From-region methods (thesis ch. 4) used as a walker would: a PVS computed for the disc of
+  // `region_radius` around the eye (turn `region_turn`) serves every frame whose camera stays
+  // in that region, and is recomputed around the first camera that leaves it.
+  std::vector<std::string> region_methods;
+  double region_radius = 1.4142135623730951;  // √2 m: the thesis's 2 m steps (ch. 4.2)
+  double region_turn = 0.0;
 };
 
 struct Violation {
@@ -50,6 +56,20 @@ struct MethodRun {
   std::size_t frames_differing_from_reference = 0;  // frames whose PVS differs from the reference's
 };
 
+struct RegionRun {
+  std::string method;
+  bool claims_conservative = false;
+  double radius = 0.0, turn = 0.0;
+  std::vector<double> compute_ms;        // one per region PVS computed
+  std::vector<double> pvs_size;          // every frame: the PVS in use
+  std::vector<double> point_pvs_size;    // every frame: the reference method's PVS at that camera
+  std::vector<double> checked_pvs_size;  // frames checked by the oracle
+  std::vector<double> witnessed_size;
+  std::uint64_t violation_count = 0;
+  std::size_t frames_with_violations = 0;
+  std::vector<Violation> violations;
+};
+
 struct OracleSummary {
   std::size_t frames_checked = 0;
   std::size_t frames_exact_2d = 0;
@@ -64,10 +84,13 @@ struct OracleSummary {
 
 struct PathVerification {
   std::vector<MethodRun> runs;
+  std::vector<RegionRun> regions;
   OracleSummary oracle;
 };
 
 // The replay command for one camera, method and scene.
+std::string region_replay_command(const SceneSource& source, const std::string& method, const Camera& centre,
+                                  double radius, double turn, const Camera& viewpoint);
 std::string replay_command(const SceneSource& source, const std::string& method, const Camera& camera);
 
 PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,

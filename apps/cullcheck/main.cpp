@@ -5,6 +5,7 @@
 // internal error (a bug: please report it with the command line).
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -103,8 +104,27 @@ struct MethodFlags {
   }
 };
 
-std::vector<std::string> parse_methods(const std::string& list) {
-  if (list == "all") return cc::method_names();
+// From-region methods along a path (thesis ch. 4): which, and the region each PVS serves.
+struct RegionFlags {
+  std::string methods;
+  double radius = std::sqrt(2.0);
+  double turn = 0.0;
+  void add(CLI::App& app, const std::string& default_methods) {
+    methods = default_methods;
+    app.add_option("--region-method", methods,
+                   "From-region methods, comma-separated, 'all' or 'none': each PVS serves the frames that stay in its region")
+        ->capture_default_str();
+    app.add_option("--region-radius", radius, "Radius (m) of a from-region PVS's disc (ε)")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-6, 1e4));
+    app.add_option("--region-turn", turn, "Turn (rad) a from-region PVS allows")->capture_default_str()->check(CLI::Range(0.0, 1.5));
+  }
+};
+
+std::vector<std::string> parse_methods(const std::string& list,
+                                       const std::vector<std::string>& names = cc::method_names()) {
+  if (list == "all") return names;
+  if (list.empty() || list == "none") return {};
   std::vector<std::string> out;
   std::size_t start = 0;
   while (start <= list.size()) {
@@ -114,7 +134,6 @@ std::vector<std::string> parse_methods(const std::string& list) {
     start = comma + 1;
   }
   for (const auto& m : out) {
-    const auto names = cc::method_names();
     if (std::find(names.begin(), names.end(), m) == names.end()) {
       std::string known;
       for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
@@ -176,6 +195,25 @@ int main(int argc, char** argv) {
   verify_tuning.add(*verify);
   verify->add_option("--method", verify_methods, "Comma-separated methods, or 'all'")->capture_default_str();
   verify->add_option("--camera", verify_camera, "One camera as JSON (instead of a path)");
+  RegionFlags verify_regions;
+  verify_regions.add(*verify, "none");
+
+  // region -----------------------------------------------------------------------------------
+  CLI::App* region = app.add_subcommand(
+      "region", "PVS of a from-region method for the disc around a camera; with --from, hold it to the oracle there");
+  SceneFlags region_scene;
+  region_scene.add(*region);
+  MethodFlags region_tuning;
+  region_tuning.add(*region);
+  SamplingFlags region_sampling;
+  region_sampling.add(*region);
+  std::string region_method = "shrink_adjustable_conservative", region_camera, region_from;
+  double region_radius = std::sqrt(2.0), region_turn = 0.0;
+  region->add_option("--method", region_method, "From-region method")->capture_default_str();
+  region->add_option("--camera", region_camera, "The region's centre camera as JSON")->required();
+  region->add_option("--radius", region_radius, "Disc radius (m)")->capture_default_str()->check(CLI::Range(0.0, 1e4));
+  region->add_option("--turn", region_turn, "Turn (rad) allowed")->capture_default_str()->check(CLI::Range(0.0, 1.5));
+  region->add_option("--from", region_from, "A viewpoint (camera JSON) of the region to check with the oracle");
 
   // report -----------------------------------------------------------------------------------
   CLI::App* report = app.add_subcommand("report", "The main job: every method and the oracle along a path, the claims ledger, report.json");
@@ -189,6 +227,8 @@ int main(int argc, char** argv) {
   report_tuning.add(*report);
   std::string report_methods = "all", report_output = "report.json", benchmark_json;
   std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
+  RegionFlags report_regions;
+  report_regions.add(*report, "all");
   cc::ClaimSearchOptions claim_options;
   report->add_option("--method", report_methods, "Comma-separated methods, or 'all'")->capture_default_str();
   report->add_option("--output,-o", report_output, "Report file to write")->capture_default_str();
@@ -252,6 +292,29 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
+    if (*region) {
+      const cc::Scene scene = region_scene.source.load();
+      auto method = cc::make_region_method(region_method, scene, region_tuning.options);
+      const cc::ViewRegion view_region{cc::camera_from_json_text(region_camera), region_radius, region_turn};
+      const cc::CullResult r = method->cull_region(view_region);
+      nlohmann::json out = pvs_json(r);
+      out["method"] = region_method;
+      out["radius"] = region_radius;
+      out["turn"] = region_turn;
+      int exit_code = 0;
+      if (!region_from.empty()) {
+        cc::VerificationOptions options;
+        options.oracle.sampling = region_sampling.sampling;
+        const cc::Camera from = cc::camera_from_json_text(region_from, "from");
+        const cc::oracle::Oracle truth(scene);
+        const cc::oracle::OracleAnswer seen = truth.visible_set(from, options.oracle);
+        const std::vector<cc::ObjectId> missed = cc::missing_from(seen.visible, r.pvs);
+        out["from"] = {{"oracle_model", seen.model}, {"witnessed", seen.visible.size()}, {"missed", missed}};
+        if (!missed.empty() && method->claims_conservative()) exit_code = kExitGateFailed;
+      }
+      std::cout << out.dump() << "\n";
+      return exit_code;
+    }
     if (*verify) {
       const cc::Scene scene = verify_scene.source.load();
       const std::vector<std::string> methods = parse_methods(verify_methods);
@@ -265,6 +328,9 @@ int main(int argc, char** argv) {
       cc::VerificationOptions options;
       options.oracle.sampling = verify_sampling.sampling;
       options.max_replays = 10;
+      options.region_methods = parse_methods(verify_regions.methods, cc::region_method_names());
+      options.region_radius = verify_regions.radius;
+      options.region_turn = verify_regions.turn;
       if (verify_camera.empty()) options.path_replay_flags = verify_path.replay_flags();
       const cc::PathVerification v = cc::verify_path(scene, verify_scene.source, path, methods, verify_tuning.options, options);
       std::cout << cc::summary_table(v);
@@ -281,6 +347,9 @@ int main(int argc, char** argv) {
       options.oracle.sampling = report_sampling.sampling;
       options.oracle_stride = oracle_stride;
       options.path_replay_flags = report_path.replay_flags();
+      options.region_methods = parse_methods(report_regions.methods, cc::region_method_names());
+      options.region_radius = report_regions.radius;
+      options.region_turn = report_regions.turn;
       const std::vector<std::string> methods = parse_methods(report_methods);
       std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
                 << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
