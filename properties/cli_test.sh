@@ -27,7 +27,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
@@ -57,6 +57,16 @@ expect_exit 2 "camera below ground" "$cc" cull --scene "$work/a.json" --camera '
 expect_error_names "camera below ground" "position.z"
 expect_exit 2 "unknown method" "$cc" cull --scene "$work/a.json" --method nonsense --camera "$camera"
 expect_error_names "unknown method" "unknown method 'nonsense'"
+expect_exit 0 "region PVS held to the oracle" "$cc" region --scene "$work/a.json" --method shrink_former --camera "$camera" \
+  --radius 1 --from "$camera"
+grep -q '"missed":\[\]' "$work/out" && pass || fail "region: the centre's own view misses a building"
+expect_exit 0 "verify with region methods" "$cc" verify --scene "$work/a.json" --path "$work/path.json" \
+  --method oh_os_conservative --region-method all --region-radius 2
+grep -q "region shrink_former (radius 2.00 m)" "$work/out" && pass || fail "verify: no region summary"
+expect_exit 2 "unknown region method" "$cc" region --scene "$work/a.json" --method nonsense --camera "$camera"
+expect_error_names "unknown region method" "unknown region method 'nonsense'"
+expect_exit 2 "unknown region method in verify" "$cc" verify --scene "$work/a.json" --camera "$camera" --region-method nonsense
+expect_error_names "unknown region method in verify" "unknown method 'nonsense'"
 expect_exit 2 "unknown generator" "$cc" generate --generator moon -o "$work/c.json"
 expect_error_names "unknown generator" "generator"
 expect_exit 2 "bad generator parameter" "$cc" generate --generator manhattan --params '{"blocks_x":-4}' -o "$work/c.json"
