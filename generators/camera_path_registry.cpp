@@ -9,7 +9,7 @@
 namespace cullcheck::generators {
 
 const std::vector<std::string>& camera_path_kinds() {
-  static const std::vector<std::string> kinds = {"street_walk", "fly_through", "moves"};
+  static const std::vector<std::string> kinds = {"street_walk", "fly_through", "moves", "plaza_crossing"};
   return kinds;
 }
 
@@ -25,7 +25,12 @@ CameraPath make_camera_path(const std::string& kind, const Scene& scene, std::ui
     return fly_through(scene, p, seed);
   }
   if (kind == "moves") return moves_path(params);
-  throw InputError("path", "kind", "unknown camera path kind '" + kind + "' (known: street_walk, fly_through, moves)");
+  if (kind == "plaza_crossing") {
+    PlazaCrossingParams p;
+    overlay_params_json(p, params, "path", kind);
+    return plaza_crossing(scene, p);
+  }
+  throw InputError("path", "kind", "unknown camera path kind '" + kind + "' (known: street_walk, fly_through, moves, plaza_crossing)");
 }
 
 }  // namespace cullcheck::generators

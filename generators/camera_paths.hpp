@@ -80,9 +80,29 @@ struct FlyThroughParams {
   }
 };
 
+// The thesis's Table 4.1 walk (plaza_crossing.cpp): along a street to a plaza, across it
+// diagonally, then up the street leaving its far corner. Lengths in metres.
+struct PlazaCrossingParams {
+  double step_m = 2.0;             // one frame per step
+  double turn_step_deg = 7.0;      // turns are split into steps no larger than this
+  double first_street_m = 566.0;   // the thesis's first street
+  double second_street_m = 550.0;
+  double eye_height = 1.7;
+  double hfov_deg = 60.0;
+  double vfov_deg = 45.0;
+
+  template <class Self, class Visitor>
+  static void visit(Self& s, Visitor&& v) {
+    v("step_m", s.step_m), v("turn_step_deg", s.turn_step_deg), v("first_street_m", s.first_street_m);
+    v("second_street_m", s.second_street_m);
+    v("eye_height", s.eye_height), v("hfov_deg", s.hfov_deg), v("vfov_deg", s.vfov_deg);
+  }
+};
+
 // InputError(object "path", field = parameter name) for unusable values.
 void validate(const StreetWalkParams& p);
 void validate(const FlyThroughParams& p);
+void validate(const PlazaCrossingParams& p);
 
 // Walks the streets of the Manhattan grid that manhattan_city(city, ...) builds (any seed:
 // streets do not depend on the city's seed).
@@ -91,6 +111,8 @@ CameraPath street_walk(const ManhattanParams& city, const StreetWalkParams& walk
 // InputError for any other scene.
 CameraPath street_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed);
 CameraPath fly_through(const Scene& scene, const FlyThroughParams& fly, std::uint64_t seed);
+// InputError unless the scene has a plaza (plaza or default generator).
+CameraPath plaza_crossing(const Scene& scene, const PlazaCrossingParams& walk);
 
 // Dispatch by kind ("street_walk", "fly_through"); `params` overlays the kind's defaults.
 const std::vector<std::string>& camera_path_kinds();

@@ -494,5 +494,36 @@ TEST(RapidCheckGenerators, CounterexamplesPrintAsReplayCommands) {
   EXPECT_NE(rc::toString(SceneCase{spec, cam}).find("--camera '"), std::string::npos);
 }
 
+// The Table 4.1 walk: east along the street south of the plaza, across it diagonally, then north;
+// frames 2 m apart, turns in steps of at most 7 degrees, every camera in the open.
+TEST(CameraPaths, PlazaCrossingFollowsTheThesisWalk) {
+  const Scene scene = make_city("plaza", 1, nlohmann::json::parse(R"({"blocks_x":11,"blocks_y":10,"block_size":40,
+      "street_width":10,"buildings_per_block":4,"plaza_blocks_x":3,"plaza_blocks_y":2,"kiosk_count":0})"));
+  const CameraPath path = make_camera_path("plaza_crossing", scene, 1, nlohmann::json::object());
+  ASSERT_GT(path.frames.size(), 100u);
+  const OpenSpace open(scene);
+  double first_turn = 0.0;
+  for (std::size_t i = 1; i < path.frames.size(); ++i) {
+    const Camera& a = path.frames[i - 1];
+    const Camera& b = path.frames[i];
+    const double step = length(plan(b.position) - plan(a.position));
+    const double turn = std::abs(shortest_turn(a.yaw, b.yaw));
+    EXPECT_LE(step, 2.0 + 1e-9) << "frame " << i;
+    EXPECT_LE(turn, radians(7.0) + 1e-12) << "frame " << i;
+    EXPECT_TRUE(step == 0.0 || turn == 0.0) << "frame " << i << " moves and turns at once";
+    EXPECT_FALSE(open.inside_building(b.position)) << "frame " << i;
+    if (first_turn == 0.0 && turn > 0.0) first_turn = b.yaw;
+  }
+  EXPECT_EQ(path.frames.front().yaw, 0.0);
+  // Diagonal of a 3 x 2-block plaza at 50 m pitch: atan(100 / 150) = 33.7 degrees; then north.
+  EXPECT_NEAR(path.frames.back().yaw, kPi / 2, 1e-12);
+  double diagonal = 0.0;
+  for (const Camera& c : path.frames)
+    if (std::abs(c.yaw - std::atan2(100.0, 150.0)) < 1e-9) diagonal = c.yaw;
+  EXPECT_NEAR(diagonal, std::atan2(100.0, 150.0), 1e-9);
+  EXPECT_THROW(make_camera_path("plaza_crossing", make_city("manhattan", 1, nlohmann::json::object()), 1, {}), InputError);
+  EXPECT_THROW(make_camera_path("plaza_crossing", scene, 1, {{"step_m", 0.0}}), InputError);
+}
+
 }  // namespace
 }  // namespace cullcheck::generators

@@ -237,7 +237,7 @@ RegionCertificate::RegionCertificate(const Scene& scene, const Quadtree& quadtre
 //    lies before X's nearest point, and then it is swept.
 // So a query that sweeps only the uncertain and relevant buildings decides each uncertain one
 // exactly as OH(OS) does, and the PVS is those plus the certainly visible.
-void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stats) {
+void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os) {
   if (++epoch_ == 0) {
     std::fill(visible_epoch_.begin(), visible_epoch_.end(), 0);
     epoch_ = 1;
@@ -352,7 +352,7 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     }
     // A candidate: its shadows bound the horizon from below (if OH(OS) surely tests it) and
     // from above, and its own visibility is decided once the sweep is 2ε past it.
-    const bool surely_tested = certainly_meets(volume, building.bounds, reach, region.turn);
+    const bool surely_tested = !same_as_oh_os || certainly_meets(volume, building.bounds, reach, region.turn);
     double nearest_farthest = HUGE_VAL;
     const auto first_prism = static_cast<std::uint32_t>(prism_views.size());
     for (std::size_t p = 0; p < building.prisms.size(); ++p) {

@@ -66,7 +66,11 @@ class RegionCertificate {
 
   // Recomputes the certificate for `region` (a sweep from its anchor). Statistics are added to
   // `stats` (cells and buildings tested, horizon nodes).
-  void certify(const MotionRegion& region, CullStatistics& stats);
+  // With `same_as_oh_os` (the guarded ΔH), "hidden" means OH(OS) culls it at every camera of the
+  // region, so only buildings OH(OS) surely tests there may occlude. Without it (from-region
+  // PVS), "hidden" means hidden from every camera, and any building's shrunk shadow counts:
+  // a shadow is real occlusion whether or not its building is in the view volume.
+  void certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os = true);
 
   // Scene indices of the certainly visible buildings, ascending.
   const std::vector<std::uint32_t>& visible() const { return visible_; }

@@ -186,7 +186,7 @@ CertifiedShadowShrinking::CertifiedShadowShrinking(const Scene& scene, const Met
 CullResult CertifiedShadowShrinking::cull_region(const ViewRegion& region) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
-  certificate_.certify(MotionRegion{region.camera, region.radius, 0.0, region.turn}, result.stats);
+  certificate_.certify(MotionRegion{region.camera, region.radius, 0.0, region.turn}, result.stats, /*same_as_oh_os=*/false);
   for (std::uint32_t b : certificate_.visible()) result.pvs.push_back(scene_.buildings[b].id);
   for (std::uint32_t b : certificate_.swept())
     if (!certificate_.certainly_visible(b)) result.pvs.push_back(scene_.buildings[b].id);

@@ -19,8 +19,10 @@
 //    CVPs: more shrinking than the footprint's own offset, so never less conservative.
 //  - shrink_adjustable_conservative — the bounds the guarded ΔH proves (engine/delta_horizon/
 //    motion_region.hpp, with no vertical motion): the PVS is every building that may meet some
-//    camera's view volume and that OH(OS) (conservative rule) does not cull from every camera
-//    of the region; conservative wherever OH(OS) is.
+//    camera's view volume and that is not hidden, for every camera of the region, behind the
+//    shadows of the buildings swept (each shrunk for the region: span narrowed by asin(ε / r)
+//    per tangent vertex, elevation lowered, merged only beyond the CVP's farthest point + 2ε);
+//    conservative wherever OH(OS)'s shadows are.
 #pragma once
 
 #include <optional>
