@@ -63,6 +63,9 @@ grep -q '"missed":\[\]' "$work/out" && pass || fail "region: the centre's own vi
 expect_exit 0 "verify with region methods" "$cc" verify --scene "$work/a.json" --path "$work/path.json" \
   --method oh_os_conservative --region-method all --region-radius 2
 grep -q "region shrink_former (radius 2.00 m)" "$work/out" && pass || fail "verify: no region summary"
+expect_exit 0 "report with a region radius sweep" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
+  --method oh_os_conservative --claim-scenes 1 --region-sweep 0.5,2 -o "$work/sweep.json"
+grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_sweep in report.json"
 expect_exit 2 "unknown region method" "$cc" region --scene "$work/a.json" --method nonsense --camera "$camera"
 expect_error_names "unknown region method" "unknown region method 'nonsense'"
 expect_exit 2 "unknown region method in verify" "$cc" verify --scene "$work/a.json" --camera "$camera" --region-method nonsense

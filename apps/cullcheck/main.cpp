@@ -18,6 +18,7 @@
 #include "oracle/oracle.hpp"
 #include "reports/claims.hpp"
 #include "reports/delta_claims.hpp"
+#include "reports/region_sweep.hpp"
 #include "reports/scaling.hpp"
 #include "reports/report.hpp"
 #include "reports/verification.hpp"
@@ -229,6 +230,12 @@ int main(int argc, char** argv) {
   std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
   RegionFlags report_regions;
   report_regions.add(*report, "all");
+  std::vector<double> region_sweep_radii;
+  report->add_option("--region-sweep", region_sweep_radii,
+                     "Also run every region method along the path at each of these disc radii (m), e.g. "
+                     "0.25,0.5,1,1.41,2,4: PVS size, frames each PVS serves and its cost, into report.json's \"region_sweep\"")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-6, 1e4));
   cc::ClaimSearchOptions claim_options;
   report->add_option("--method", report_methods, "Comma-separated methods, or 'all'")->capture_default_str();
   report->add_option("--output,-o", report_output, "Report file to write")->capture_default_str();
@@ -366,6 +373,12 @@ int main(int argc, char** argv) {
       for (cc::ClaimCheck& c : cc::check_image_space_pitch_roll(claim_options)) in.claims.push_back(std::move(c));
       for (cc::ClaimCheck& c : cc::check_delta_horizon_claims(claim_options)) in.claims.push_back(std::move(c));
       nlohmann::json document = cc::build_report(in);
+      if (!region_sweep_radii.empty()) {
+        document["region_sweep"] =
+            cc::region_radius_sweep(scene, path, options.region_methods.empty() ? cc::region_method_names() : options.region_methods,
+                                    region_sweep_radii, report_regions.turn, report_tuning.options);
+        std::cout << cc::region_sweep_table(document["region_sweep"]);
+      }
       if (!scaling_grids.empty()) {
         cc::ScalingOptions scaling;
         scaling.grids = scaling_grids;
