@@ -18,6 +18,7 @@
 #include "oracle/oracle.hpp"
 #include "reports/claims.hpp"
 #include "reports/delta_claims.hpp"
+#include "reports/shrinking_claims.hpp"
 #include "reports/region_sweep.hpp"
 #include "reports/scaling.hpp"
 #include "reports/report.hpp"
@@ -372,6 +373,7 @@ int main(int argc, char** argv) {
       in.claims = cc::check_shadow_elevation_rule(claim_options);
       for (cc::ClaimCheck& c : cc::check_image_space_pitch_roll(claim_options)) in.claims.push_back(std::move(c));
       for (cc::ClaimCheck& c : cc::check_delta_horizon_claims(claim_options)) in.claims.push_back(std::move(c));
+      for (cc::ClaimCheck& c : cc::check_shrinking_claims(claim_options)) in.claims.push_back(std::move(c));
       nlohmann::json document = cc::build_report(in);
       if (!region_sweep_radii.empty()) {
         document["region_sweep"] =
