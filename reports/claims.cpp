@@ -29,6 +29,21 @@ nlohmann::json to_json(const ClaimCheck& c) {
   return j;
 }
 
+SceneSource seeded_street_city(std::uint64_t seed, int index, std::uint64_t tag, const StreetCityRanges& r) {
+  generators::Random draw = generators::Random::stream(seed, tag, static_cast<std::uint64_t>(index));
+  SceneSource s;
+  s.generator = "manhattan";
+  s.seed = seed * 1000 + static_cast<std::uint64_t>(index);
+  s.parameters_json = nlohmann::json{{"blocks_x", draw.uniform_int(r.min_blocks, r.max_blocks)},
+                                     {"blocks_y", draw.uniform_int(r.min_blocks, r.max_blocks)},
+                                     {"buildings_per_block", draw.uniform_int(r.min_lots, r.max_lots)},
+                                     {"block_size", draw.uniform_int(r.min_block, r.max_block)},
+                                     {"street_width", draw.uniform_int(r.min_street, r.max_street)},
+                                     {"thin_fraction", r.thin_fraction}}
+                          .dump();
+  return s;
+}
+
 namespace {
 
 // Small cities with occluders on both sides of eye height: thin slabs (wide, shallow roofs,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "oracle/sampling.hpp"
+#include "reports/scene_source.hpp"
 
 namespace cullcheck {
 
@@ -35,6 +36,15 @@ struct ClaimCheck {
 };
 
 nlohmann::json to_json(const ClaimCheck& claim);
+
+// A seeded Manhattan city for a claim search: sizes drawn (in this order) from the ranges by the
+// stream (seed, tag, index), scene seed seed * 1000 + index.
+struct StreetCityRanges {
+  int min_blocks, max_blocks, min_lots, max_lots, min_block, max_block, min_street, max_street;
+  double thin_fraction;
+};
+
+SceneSource seeded_street_city(std::uint64_t seed, int index, std::uint64_t tag, const StreetCityRanges& ranges);
 
 // The shadow-elevation rule of thesis ch. 3.1.2 (β_min from the two tangent vertices) against
 // the far-chain bound, over scenes with occluders below and above the eye (plazas with kiosks,

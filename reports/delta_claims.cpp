@@ -22,18 +22,7 @@ using generators::MoveKind;
 
 // Manhattan blocks with narrow streets and thin slabs: what a lateral step can uncover.
 SceneSource search_scene(std::uint64_t seed, int index) {
-  generators::Random r = generators::Random::stream(seed, 0xDE17A, static_cast<std::uint64_t>(index));
-  SceneSource s;
-  s.generator = "manhattan";
-  s.seed = seed * 1000 + static_cast<std::uint64_t>(index);
-  s.parameters_json = nlohmann::json{{"blocks_x", r.uniform_int(2, 5)},
-                                     {"blocks_y", r.uniform_int(2, 5)},
-                                     {"buildings_per_block", r.uniform_int(1, 4)},
-                                     {"block_size", r.uniform_int(20, 50)},
-                                     {"street_width", r.uniform_int(6, 16)},
-                                     {"thin_fraction", 0.5}}
-                          .dump();
-  return s;
+  return seeded_street_city(seed, index, 0xDE17A, {2, 5, 1, 4, 20, 50, 6, 16, 0.5});
 }
 
 // 1-8 sideways steps (Fig. 3.10's case), from a pedestrian frame to past a building, with stops

@@ -16,19 +16,9 @@
 namespace cullcheck {
 namespace {
 
+// Manhattan blocks with narrow streets and thin slabs, where a disc can reach across a street.
 SceneSource search_scene(std::uint64_t seed, int index) {
-  generators::Random r = generators::Random::stream(seed, 0x5A41C, static_cast<std::uint64_t>(index));
-  SceneSource s;
-  s.generator = "manhattan";
-  s.seed = seed * 1000 + static_cast<std::uint64_t>(index);
-  s.parameters_json = nlohmann::json{{"blocks_x", r.uniform_int(3, 6)},
-                                     {"blocks_y", r.uniform_int(3, 6)},
-                                     {"buildings_per_block", r.uniform_int(2, 4)},
-                                     {"block_size", r.uniform_int(20, 40)},
-                                     {"street_width", r.uniform_int(6, 14)},
-                                     {"thin_fraction", 0.3}}
-                          .dump();
-  return s;
+  return seeded_street_city(seed, index, 0x5A41C, {3, 6, 2, 4, 20, 40, 6, 14, 0.3});
 }
 
 struct Variant {

@@ -44,6 +44,19 @@ bool region_holds(const ViewRegion& region, const Camera& c) {
   return std::abs(std::remainder(c.yaw - a.yaw, kTwoPi)) + std::abs(c.pitch - a.pitch) + std::abs(c.roll - a.roll) <= region.turn;
 }
 
+// A building the oracle saw at `frame` and a method culled, with the oracle's witness.
+Violation violation_of(std::size_t frame, ObjectId building, const Camera& camera, const oracle::OracleAnswer& answer,
+                       std::string replay) {
+  Violation v;
+  v.frame = frame;
+  v.building = building;
+  v.camera = camera;
+  v.model = answer.model;
+  if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(building));
+  v.replay = std::move(replay);
+  return v;
+}
+
 // Violations of one method over a set of checked frames: all counted, the first few kept.
 struct ViolationTally {
   std::uint64_t count = 0;
@@ -150,17 +163,12 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         ++tally->frames;
         for (ObjectId id : missed) {
           if (tally->kept.size() >= options.max_replays) break;
-          Violation v;
-          v.frame = frame;
-          v.building = id;
-          v.camera = camera;
-          v.model = answer.model;
-          if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
-          v.replay = engines[m]->incremental() && !options.path_replay_flags.empty()
-                         ? "cullcheck verify " + source.replay_flags() + " " + options.path_replay_flags + " --method " +
-                               run.method + "   # violation at frame " + std::to_string(frame)
-                         : replay_command(source, run.method, camera);
-          tally->kept.push_back(std::move(v));
+          tally->kept.push_back(violation_of(frame, id, camera, answer,
+                                             engines[m]->incremental() && !options.path_replay_flags.empty()
+                                                 ? "cullcheck verify " + source.replay_flags() + " " +
+                                                       options.path_replay_flags + " --method " + run.method +
+                                                       "   # violation at frame " + std::to_string(frame)
+                                                 : replay_command(source, run.method, camera)));
         }
       }
     }
@@ -174,14 +182,8 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       ++run.frames_with_violations;
       for (ObjectId id : missed) {
         if (run.violations.size() >= options.max_replays) break;
-        Violation v;
-        v.frame = frame;
-        v.building = id;
-        v.camera = camera;
-        v.model = answer.model;
-        if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(id));
-        v.replay = region_replay_command(source, run.method, current[m]->camera, run.radius, run.turn, camera);
-        run.violations.push_back(std::move(v));
+        run.violations.push_back(violation_of(
+            frame, id, camera, answer, region_replay_command(source, run.method, current[m]->camera, run.radius, run.turn, camera)));
       }
     }
   }
