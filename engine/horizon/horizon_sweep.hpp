@@ -129,41 +129,30 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
   }
 }
 
-// Skips nothing: plain OH(OS).
-struct NoSkip {
-  bool cell(std::uint32_t) const { return false; }
-  bool building(std::uint32_t) const { return false; }
-};
-
-// Runs one query into `result` (PVS unsorted, statistics without cull_ms). `skip` is asked before
-// a cell or building enters the sweep; it may only skip what the sweep would have culled.
-// Returns the number of items skipped.
-template <class Skip>
-std::uint64_t sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, ShadowRule rule,
-                            const Camera& camera, const Skip& skip, CullResult& result) {
+// Runs one query into `result` (PVS unsorted, statistics without cull_ms). What varies between
+// the sweeps built on it:
+//  - `restrict_to_coverage`: start bins outside the camera's azimuth coverage at +inf (OH(OS));
+//    the from-region sweeps (engine/shrinking/) keep the full circle;
+//  - `meets(volume, box)`: whether a box may be seen, so is not culled by the view volume;
+//  - `cast(pending, building index, eye, nearest distance, unclipped, spans)`: queues the
+//    shadows of a visible building (OH(OS): queue_shadows; shrinking: shrunk shadows).
+template <class Meets, class CastShadows>
+void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
+                   bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, CullResult& result) {
   CullStatistics& stats = result.stats;
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
   const Vec2 e = plan(eye);
   const double unclipped = unclipped_distance(camera);
   horizon.reset();
-  horizon.restrict_to(azimuth_coverage(camera));
+  if (restrict_to_coverage) horizon.restrict_to(azimuth_coverage(camera));
   horizon.take_node_visits();
 
   std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
   ShadowQueue pending;
-  std::uint64_t skipped = 0;
   std::vector<std::optional<ConvexSpan>> spans;
   const auto& cells = quadtree.cells();
-  auto push_cell = [&](std::uint32_t c) {
-    if (cells[c].last <= cells[c].first) return;
-    if (skip.cell(c)) {
-      ++skipped;
-      return;
-    }
-    sweep.push({min_distance(e, cells[c].bounds), false, c});
-  };
-  if (!cells.empty()) push_cell(0);
+  if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
 
   while (!sweep.empty()) {
     const SweepItem item = sweep.top();
@@ -173,27 +162,35 @@ std::uint64_t sweep_horizon(const Scene& scene, const Quadtree& quadtree, Occlus
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!volume.may_intersect(box) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
-      quadtree.for_each_child(cell, push_cell, [&](std::uint32_t b) {
-        if (skip.building(b)) {
-          ++skipped;
-          return;
-        }
-        sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b});
-      });
+      if (!meets(volume, box) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
+      quadtree.for_each_child(
+          cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
+          [&](std::uint32_t b) { sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b}); });
       continue;
     }
     const Building& building = scene.buildings[item.index];
     ++stats.buildings_tested;
-    if (!volume.may_intersect(building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
+    if (!meets(volume, building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
         !prisms_visible(horizon, building, eye, spans))
       continue;
     result.pvs.push_back(building.id);
-    queue_shadows(pending, rule, building, eye, item.distance, unclipped, spans);
+    cast(pending, item.index, eye, item.distance, unclipped, spans);
   }
   pending.merge_all(horizon, stats);
   stats.horizon_nodes = horizon.take_node_visits();
-  return skipped;
+}
+
+// Plain OH(OS) at one camera with `rule`'s shadows.
+inline void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, ShadowRule rule,
+                          const Camera& camera, CullResult& result) {
+  sweep_horizon(
+      scene, quadtree, horizon, camera, /*restrict_to_coverage=*/true,
+      [](const ViewVolume& volume, const Box3& box) { return volume.may_intersect(box); },
+      [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
+          const std::vector<std::optional<ConvexSpan>>& spans) {
+        queue_shadows(pending, rule, scene.buildings[index], eye, distance, unclipped, spans);
+      },
+      result);
 }
 
 }  // namespace cullcheck

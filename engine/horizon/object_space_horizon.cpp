@@ -15,7 +15,7 @@ std::string ObjectSpaceHorizonCulling::name() const {
 CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
-  sweep_horizon(scene_, quadtree_, horizon_, rule_, camera, NoSkip{}, result);
+  sweep_horizon(scene_, quadtree_, horizon_, rule_, camera, result);
   std::sort(result.pvs.begin(), result.pvs.end());
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <queue>
 
 #include "engine/horizon/horizon_sweep.hpp"
 
@@ -45,54 +44,22 @@ std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& p
   return ShrunkShadow{shrunk, std::tan(beta_min_s)};
 }
 
-// The OH(OS) sweep from the region's centre, culling by the region's view volumes (Fig. 4.8: the
-// frustum widened to every camera of the region; the horizon is kept over the full circle, which
-// only hides less than the widened frustum's coverage would). Buildings are tested with their
-// own CVPs; `cast(pending, building index, eye, nearest distance, unclipped, spans)` queues the
-// shadows of a visible one, as the variant shrinks them.
+// The OH(OS) sweep (horizon_sweep.hpp) from the region's centre, culling by the region's view
+// volumes (Fig. 4.8: the frustum widened to every camera of the region; the horizon is kept over
+// the full circle, which only hides less than the widened frustum's coverage would). Buildings
+// are tested with their own CVPs; `cast` queues a visible one's shadows, shrunk as the variant
+// shrinks them.
 template <class CastShadows>
 CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
-                        CastShadows&& cast) {
+                        const CastShadows& cast) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
-  CullStatistics& stats = result.stats;
-  const Camera& camera = region.camera;
-  const ViewVolume volume(camera);
-  const Vec3 eye = camera.position;
-  const Vec2 e = plan(eye);
-  const double unclipped = unclipped_distance(camera);
-  horizon.reset();
-  horizon.take_node_visits();
-  std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
-  ShadowQueue pending;
-  std::vector<std::optional<ConvexSpan>> spans;
-  const auto& cells = quadtree.cells();
-  if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
-  while (!sweep.empty()) {
-    const SweepItem item = sweep.top();
-    sweep.pop();
-    pending.merge_nearer_than(item.distance, horizon, stats);
-    if (!item.is_building) {
-      const Quadtree::Cell& cell = cells[item.index];
-      ++stats.cells_tested;
-      const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!may_meet(volume, box, region.radius, region.turn) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
-      quadtree.for_each_child(
-          cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
-          [&](std::uint32_t b) { sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b}); });
-      continue;
-    }
-    const Building& building = scene.buildings[item.index];
-    ++stats.buildings_tested;
-    if (!may_meet(volume, building.bounds, region.radius, region.turn) ||
-        box_hidden(horizon, building.bounds.plan(), building.height, eye) || !prisms_visible(horizon, building, eye, spans))
-      continue;
-    result.pvs.push_back(building.id);
-    cast(pending, item.index, eye, item.distance, unclipped, spans);
-  }
-  stats.horizon_nodes = horizon.take_node_visits();
+  sweep_horizon(
+      scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
+      [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); }, cast,
+      result);
   std::sort(result.pvs.begin(), result.pvs.end());
-  stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
