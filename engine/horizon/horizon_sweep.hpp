@@ -1,4 +1,5 @@
-// The front-to-back sweep shared by OH(OS) and the guarded ΔH method (thesis ch. 3.1.1-3.1.2).
+// The front-to-back sweep of OH(OS) and the from-region shrinking methods, and the tests and
+// shadow queue the guarded ΔH reuses (thesis ch. 3.1.1-3.1.2).
 //
 // One query: the horizon starts empty except outside the view volume's azimuth coverage; the
 // quadtree is traversed best-first on the cells' and buildings' nearest plan distance; a cell or
