@@ -73,6 +73,15 @@ class RegionCullingMethod {
   // Whether the method claims oracle-witnessed ⊆ PVS for every camera of the region.
   virtual bool claims_conservative() const = 0;
   virtual CullResult cull_region(const ViewRegion& region) = 0;
+  // A view cell's PVS is the union of its samples' region PVSs (engine/shrinking/view_cell.hpp).
+  // `known[i]` (scene building index i) marks a building already in that union: a sweep-based
+  // method accepts it without its horizon tests and casts its shadows, which leaves the union
+  // unchanged (horizon_sweep.hpp) and saves the tests. The default ignores `known`.
+  virtual CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& /*known*/) {
+    return cull_region(region);
+  }
+  // Whether cull_region_carrying uses `known` (reports say where carrying saves nothing).
+  virtual bool carries_known() const { return false; }
 };
 
 // Names accepted by make_method, in report order.

@@ -136,10 +136,16 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
 //    the from-region sweeps (engine/shrinking/) keep the full circle;
 //  - `meets(volume, box)`: whether a box may be seen, so is not culled by the view volume;
 //  - `cast(pending, building index, eye, nearest distance, unclipped, spans)`: queues the
-//    shadows of a visible building (OH(OS): queue_shadows; shrinking: shrunk shadows).
-template <class Meets, class CastShadows>
+//    shadows of a visible building (OH(OS): queue_shadows; shrinking: shrunk shadows);
+//  - `known(building index)`: a building the caller already holds in its PVS (a view cell's
+//    union of sample PVSs, engine/shrinking/view_cell.hpp) is accepted without its horizon tests
+//    and casts its shadows. That changes nothing else: had it been hidden, each of its CVPs lay
+//    below H over its span, and a shadow is never above the CVP's own highest slope over a span
+//    within the CVP's (shrunk shadows even less), so merging it raises no bin.
+template <class Meets, class CastShadows, class Known>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
-                   bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, CullResult& result) {
+                   bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, const Known& known,
+                   CullResult& result) {
   CullStatistics& stats = result.stats;
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
@@ -170,15 +176,28 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
       continue;
     }
     const Building& building = scene.buildings[item.index];
-    ++stats.buildings_tested;
-    if (!meets(volume, building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
-        !prisms_visible(horizon, building, eye, spans))
-      continue;
+    if (known(item.index)) {
+      if (!meets(volume, building.bounds)) continue;
+      ++stats.items_skipped;
+      spans.clear();
+      for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
+    } else {
+      ++stats.buildings_tested;
+      if (!meets(volume, building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
+          !prisms_visible(horizon, building, eye, spans))
+        continue;
+    }
     result.pvs.push_back(building.id);
     cast(pending, item.index, eye, item.distance, unclipped, spans);
   }
   pending.merge_all(horizon, stats);
   stats.horizon_nodes = horizon.take_node_visits();
+}
+template <class Meets, class CastShadows>
+void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
+                   bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, CullResult& result) {
+  sweep_horizon(scene, quadtree, horizon, camera, restrict_to_coverage, meets, cast,
+                [](std::uint32_t) { return false; }, result);
 }
 
 // Plain OH(OS) at one camera with `rule`'s shadows.

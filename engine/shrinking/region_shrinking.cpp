@@ -49,15 +49,17 @@ std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& p
 // the full circle, which only hides less than the widened frustum's coverage would). Buildings
 // are tested with their own CVPs; `cast` queues a visible one's shadows, shrunk as the variant
 // shrinks them.
+// `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
+// cull_region_carrying).
 template <class CastShadows>
 CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
-                        const CastShadows& cast) {
+                        const CastShadows& cast, const std::vector<char>* known = nullptr) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
   sweep_horizon(
       scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
       [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); }, cast,
-      result);
+      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, result);
   std::sort(result.pvs.begin(), result.pvs.end());
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -68,7 +70,11 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
 PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options)
     : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
 
-CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) {
+CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr); }
+CullResult PublishedShadowShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) {
+  return sweep(region, &known);
+}
+CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::vector<char>* known) {
   return sweep_region(scene_, quadtree_, horizon_, region,
                       [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
                           const std::vector<std::optional<ConvexSpan>>& spans) {
@@ -81,7 +87,8 @@ CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) {
                           const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
                           if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
                         }
-                      });
+                      },
+                      known);
 }
 
 FootprintShrinking::FootprintShrinking(const Scene& scene, const MethodOptions& options)
@@ -93,7 +100,11 @@ FootprintShrinking::FootprintShrinking(const Scene& scene, const MethodOptions& 
 // line from the centre C to a point p that passes through a shrunk CVP at q, and the sight line
 // from any eye within ε of C (same height) to p, are at the same height at the same fraction of
 // the way and at most ε apart in plan there, so the latter passes through the unshrunk CVP.
-CullResult FootprintShrinking::cull_region(const ViewRegion& region) {
+CullResult FootprintShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr); }
+CullResult FootprintShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) {
+  return sweep(region, &known);
+}
+CullResult FootprintShrinking::sweep(const ViewRegion& region, const std::vector<char>* known) {
   if (!shrunk_radius_ || *shrunk_radius_ != region.radius) {
     shrunk_.assign(scene_.buildings.size(), {});
     for (std::size_t b = 0; b < scene_.buildings.size(); ++b)
@@ -114,7 +125,8 @@ CullResult FootprintShrinking::cull_region(const ViewRegion& region) {
                           pending.push(max_vertex_distance(prism.ring, e), span->span,
                                        shadow_slope(ShadowRule::conservative, prism, eye, *span));
                         }
-                      });
+                      },
+                      known);
 }
 
 std::optional<std::vector<Vec2>> shrink_convex_ring(const std::vector<Vec2>& ring, double by) {

@@ -41,8 +41,12 @@ class PublishedShadowShrinking final : public RegionCullingMethod {
   std::string name() const override { return "shrink_adjustable_thesis"; }
   bool claims_conservative() const override { return false; }
   CullResult cull_region(const ViewRegion& region) override;
+  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override;
+  bool carries_known() const override { return true; }
 
  private:
+  CullResult sweep(const ViewRegion& region, const std::vector<char>* known);
+
   const Scene& scene_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_;
@@ -54,8 +58,12 @@ class FootprintShrinking final : public RegionCullingMethod {
   std::string name() const override { return "shrink_former"; }
   bool claims_conservative() const override { return true; }
   CullResult cull_region(const ViewRegion& region) override;
+  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override;
+  bool carries_known() const override { return true; }
 
  private:
+  CullResult sweep(const ViewRegion& region, const std::vector<char>* known);
+
   const Scene& scene_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_;

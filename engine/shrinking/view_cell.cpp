@@ -1,0 +1,103 @@
+#include "engine/shrinking/view_cell.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/shrinking/circle_tiling.hpp"
+
+namespace cullcheck {
+
+std::string_view cell_sampling_name(CellSampling s) { return s == CellSampling::boundary ? "boundary" : "tiled"; }
+
+CellSampling parse_cell_sampling(std::string_view name) {
+  if (name == "boundary") return CellSampling::boundary;
+  if (name == "tiled") return CellSampling::tiled;
+  throw std::invalid_argument("unknown view-cell sampling '" + std::string(name) + "' (known: boundary, tiled)");
+}
+
+std::vector<Vec2> boundary_samples(const std::vector<Vec2>& ring, double epsilon) {
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
+    const auto pieces = static_cast<std::size_t>(std::max(1.0, std::ceil(length(d) / (2.0 * epsilon))));
+    for (std::size_t k = 0; k < pieces; ++k) out.push_back(a + d * (static_cast<double>(k) / static_cast<double>(pieces)));
+  }
+  return out;
+}
+
+namespace {
+
+void check_cell(const ViewCell& cell, double epsilon, CellSampling sampling, std::size_t max_samples) {
+  const auto& r = cell.ring;
+  if (r.size() < 3) throw std::invalid_argument("view cell: needs at least 3 vertices, has " + std::to_string(r.size()));
+  double area = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Vec2 a = r[i], b = r[(i + 1) % r.size()], c = r[(i + 2) % r.size()];
+    if (!std::isfinite(a.x) || !std::isfinite(a.y)) throw std::invalid_argument("view cell: vertex " + std::to_string(i) + " is not finite");
+    if (a == b) throw std::invalid_argument("view cell: vertex " + std::to_string(i) + " is repeated");
+    if (cross(b - a, c - b) < 0.0) throw std::invalid_argument("view cell: not convex and counter-clockwise at vertex " + std::to_string((i + 1) % r.size()));
+    area += cross(a, b);
+  }
+  if (!(area > 0.0)) throw std::invalid_argument("view cell: has no area");
+  if (!std::isfinite(cell.eye_height)) throw std::invalid_argument("view cell: eye height is not finite");
+  if (!(epsilon > 0.0) || !std::isfinite(epsilon)) throw std::invalid_argument("view cell: ε must be positive and finite");
+  // Estimate before generating: perimeter / 2ε boundary samples, area / (1.5·√3·ε²) lattice discs.
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) perimeter += length(r[(i + 1) % r.size()] - r[i]);
+  const double estimate = sampling == CellSampling::boundary
+                              ? perimeter / (2.0 * epsilon) + static_cast<double>(r.size())
+                              : 0.5 * area / (1.5 * std::sqrt(3.0) * epsilon * epsilon) + perimeter / epsilon;
+  if (estimate > static_cast<double>(max_samples))
+    throw std::invalid_argument("view cell: ε = " + std::to_string(epsilon) + " m needs about " +
+                                std::to_string(static_cast<long long>(estimate)) + " samples, more than the limit " +
+                                std::to_string(max_samples));
+}
+
+}  // namespace
+
+std::vector<Vec2> cell_samples(const ViewCell& cell, double epsilon, CellSampling sampling, std::size_t max_samples) {
+  check_cell(cell, epsilon, sampling, max_samples);
+  return sampling == CellSampling::boundary ? boundary_samples(cell.ring, epsilon)
+                                            : CircleTiling{epsilon}.centres_covering(cell.ring);
+}
+
+ViewCellResult view_cell_pvs(RegionCullingMethod& method, const Scene& scene, const ViewCell& cell, double epsilon,
+                             CellSampling sampling, bool carry, const Camera& camera) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Vec2> samples = cell_samples(cell, epsilon, sampling);
+  ViewCellResult out;
+  out.samples = samples.size();
+  std::vector<char> known(scene.buildings.size(), 0);
+  std::vector<std::pair<ObjectId, std::uint32_t>> index_of;  // (id, scene index), sorted by id
+  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of.emplace_back(scene.buildings[b].id, b);
+  std::sort(index_of.begin(), index_of.end());
+  auto mark = [&](ObjectId id) {
+    const auto it = std::lower_bound(index_of.begin(), index_of.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
+    known[it->second] = 1;
+  };
+  Camera eye = camera;
+  eye.hfov = kTwoPi;
+  eye.yaw = eye.pitch = eye.roll = 0.0;
+  for (const Vec2 s : samples) {
+    eye.position = {s.x, s.y, cell.eye_height};
+    const ViewRegion region{eye, epsilon, 0.0};
+    const CullResult r = carry ? method.cull_region_carrying(region, known) : method.cull_region(region);
+    out.sample_pvs_size.push_back(r.pvs.size());
+    for (ObjectId id : r.pvs) mark(id);
+    const CullStatistics& s2 = r.stats;
+    out.stats.cells_tested += s2.cells_tested;
+    out.stats.buildings_tested += s2.buildings_tested;
+    out.stats.horizon_nodes += s2.horizon_nodes;
+    out.stats.occluders_applied += s2.occluders_applied;
+    out.stats.items_skipped += s2.items_skipped;
+  }
+  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b)
+    if (known[b]) out.pvs.push_back(scene.buildings[b].id);
+  std::sort(out.pvs.begin(), out.pvs.end());
+  out.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace cullcheck
