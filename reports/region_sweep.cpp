@@ -8,11 +8,12 @@
 namespace cullcheck {
 
 nlohmann::json region_radius_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
-                                   const std::vector<double>& radii, double turn, const MethodOptions& options) {
+                                   const std::vector<double>& radii, double turn, bool on_tiling, const MethodOptions& options) {
   VerificationOptions verification;
   verification.oracle_stride = path.frames.size() + 1;  // frame 0 only: the sweep is about cost
   verification.region_methods = methods;
   verification.region_turn = turn;
+  verification.region_on_tiling = on_tiling;
   nlohmann::json rows = nlohmann::json::array();
   for (double radius : radii) {
     verification.region_radius = radius;
@@ -23,6 +24,7 @@ nlohmann::json region_radius_sweep(const Scene& scene, const CameraPath& path, c
       rows.push_back({{"method", r.method},
                       {"radius", radius},
                       {"turn", turn},
+                      {"placement", on_tiling ? "circle_tiling" : "at_eye"},
                       {"pvs_computed", r.compute_ms.size()},
                       {"frames_per_pvs", computed > 0 ? frames / computed : 0.0},
                       {"seconds_per_pvs", computed > 0 ? frames / computed / path.frames_per_second : 0.0},

@@ -18,7 +18,7 @@ namespace cullcheck {
 // seconds_per_pvs (at the path's frame rate), compute_ms_median, pvs_mean, point_pvs_mean,
 // increase_over_point_pvs}.
 nlohmann::json region_radius_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
-                                   const std::vector<double>& radii, double turn, const MethodOptions& options);
+                                   const std::vector<double>& radii, double turn, bool on_tiling, const MethodOptions& options);
 // The rows as a printed table.
 std::string region_sweep_table(const nlohmann::json& rows);
 

@@ -159,6 +159,7 @@ nlohmann::json build_report(const ReportInputs& in) {
                        {"claims_conservative", r.claims_conservative},
                        {"radius", r.radius},
                        {"turn", r.turn},
+                       {"placement", r.on_tiling ? "circle_tiling" : "at_eye"},
                        {"pvs_computed", r.compute_ms.size()},
                        {"frames_per_pvs", ratio(static_cast<double>(r.pvs_size.size()), static_cast<double>(r.compute_ms.size()))},
                        {"compute_ms_median", median(r.compute_ms)},

@@ -1,5 +1,7 @@
 #include "reports/scene_source.hpp"
 
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
@@ -17,6 +19,13 @@ Scene SceneSource::load() const {
     throw InputError("generator", "params", std::string("is not valid JSON: ") + e.what());
   }
   return generators::make_city(generator, seed, params);
+}
+
+std::string round_trip_text(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
 }
 
 std::string shell_quote(const std::string& text) {

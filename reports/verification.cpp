@@ -1,5 +1,7 @@
 #include "reports/verification.hpp"
 
+#include "engine/shrinking/circle_tiling.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -29,7 +31,7 @@ std::string region_replay_command(const SceneSource& source, const std::string& 
     return shell_quote(t);
   };
   return "cullcheck region " + source.replay_flags() + " --method " + method + " --camera " + text(centre) + " --radius " +
-         std::to_string(radius) + " --turn " + std::to_string(turn) + " --from " + text(viewpoint);
+         round_trip_text(radius) + " --turn " + round_trip_text(turn) + " --from " + text(viewpoint);
 }
 
 namespace {
@@ -99,6 +101,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     run.claims_conservative = region_engines.back()->claims_conservative();
     run.radius = options.region_radius;
     run.turn = options.region_turn;
+    run.on_tiling = options.region_on_tiling;
     out.regions.push_back(std::move(run));
   }
   const std::size_t reference =
@@ -125,6 +128,10 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       RegionRun& run = out.regions[m];
       if (!current[m] || !region_holds(*current[m], camera)) {
         current[m] = ViewRegion{camera, options.region_radius, options.region_turn};
+        if (options.region_on_tiling) {
+          const Vec2 c = CircleTiling{options.region_radius}.nearest_centre(plan(camera.position));
+          current[m]->camera.position = {c.x, c.y, camera.position.z};
+        }
         const CullResult r = region_engines[m]->cull_region(*current[m]);
         region_pvs[m] = r.pvs;
         run.compute_ms.push_back(r.stats.cull_ms);

@@ -30,6 +30,10 @@ struct VerificationOptions {
   std::vector<std::string> region_methods;
   double region_radius = 1.4142135623730951;  // √2 m: the thesis's 2 m steps (ch. 4.2)
   double region_turn = 0.0;
+  // Where a new disc is centred when the walker leaves the old one: at the walker's eye, or at
+  // the nearest centre of the circle tiling (Fig. 4.9d, engine/shrinking/circle_tiling.hpp),
+  // whose six neighbours a client can compute ahead.
+  bool region_on_tiling = false;
 };
 
 struct Violation {
@@ -60,6 +64,7 @@ struct RegionRun {
   std::string method;
   bool claims_conservative = false;
   double radius = 0.0, turn = 0.0;
+  bool on_tiling = false;
   std::vector<double> compute_ms;        // one per region PVS computed
   std::vector<double> pvs_size;          // every frame: the PVS in use
   std::vector<double> point_pvs_size;    // every frame: the reference method's PVS at that camera

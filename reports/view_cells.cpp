@@ -23,13 +23,6 @@ bool inside_building(const Scene& scene, Vec2 p) {
   return false;
 }
 
-std::string fixed(double v) {
-  std::ostringstream o;
-  o.precision(17);
-  o << v;
-  return o.str();
-}
-
 // Cells spread over the city: every k-th, k chosen so that about `n` are picked.
 std::vector<std::size_t> spread(std::size_t total, std::size_t n) {
   std::vector<std::size_t> out;
@@ -70,8 +63,8 @@ std::string cell_replay_command(const SceneSource& source, const std::string& me
   std::string view = camera_to_json_text(from);
   if (!view.empty() && view.back() == '\n') view.pop_back();
   return "cullcheck cell " + source.replay_flags() + " --method " + method + " --cell " + std::to_string(cell) +
-         " --epsilon " + fixed(epsilon) + " --sampling " + std::string(cell_sampling_name(sampling)) + " --eye-height " +
-         fixed(eye_height) + " --from " + shell_quote(view);
+         " --epsilon " + round_trip_text(epsilon) + " --sampling " + std::string(cell_sampling_name(sampling)) + " --eye-height " +
+         round_trip_text(eye_height) + " --from " + shell_quote(view);
 }
 
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,

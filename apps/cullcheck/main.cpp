@@ -114,7 +114,13 @@ struct RegionFlags {
   std::string methods;
   double radius = std::sqrt(2.0);
   double turn = 0.0;
+  std::string placement = "eye";
   void add(CLI::App& app, const std::string& default_methods) {
+    app.add_option("--region-placement", placement,
+                   "Where a new disc is centred when the walker leaves the old one: 'eye' (at the walker) or 'tiling' "
+                   "(the nearest centre of the hexagonal circle tiling, thesis Fig. 4.9d)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"eye", "tiling"}));
     methods = default_methods;
     app.add_option("--region-method", methods,
                    "From-region methods, comma-separated, 'all' or 'none': each PVS serves the frames that stay in its region")
@@ -424,6 +430,7 @@ int main(int argc, char** argv) {
       options.region_methods = parse_methods(verify_regions.methods, cc::region_method_names());
       options.region_radius = verify_regions.radius;
       options.region_turn = verify_regions.turn;
+      options.region_on_tiling = verify_regions.placement == "tiling";
       if (verify_camera.empty()) options.path_replay_flags = verify_path.replay_flags();
       const cc::PathVerification v = cc::verify_path(scene, verify_scene.source, path, methods, verify_tuning.options, options);
       std::cout << cc::summary_table(v);
@@ -443,6 +450,7 @@ int main(int argc, char** argv) {
       options.region_methods = parse_methods(report_regions.methods, cc::region_method_names());
       options.region_radius = report_regions.radius;
       options.region_turn = report_regions.turn;
+      options.region_on_tiling = report_regions.placement == "tiling";
       const std::vector<std::string> methods = parse_methods(report_methods);
       std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
                 << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
@@ -463,7 +471,7 @@ int main(int argc, char** argv) {
       if (!region_sweep_radii.empty()) {
         document["region_sweep"] =
             cc::region_radius_sweep(scene, path, options.region_methods.empty() ? cc::region_method_names() : options.region_methods,
-                                    region_sweep_radii, report_regions.turn, report_tuning.options);
+                                    region_sweep_radii, report_regions.turn, options.region_on_tiling, report_tuning.options);
         std::cout << cc::region_sweep_table(document["region_sweep"]);
       }
       std::size_t view_cell_violations = 0;
