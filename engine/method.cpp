@@ -6,6 +6,7 @@
 #include "engine/delta_horizon/thesis_delta_horizon.hpp"
 #include "engine/frustum/view_frustum_culling.hpp"
 #include "engine/horizon/object_space_horizon.hpp"
+#include "engine/shrinking/minkowski_shrinking.hpp"
 #include "engine/shrinking/region_shrinking.hpp"
 #include "engine/image_space/image_space_horizon.hpp"
 
@@ -33,13 +34,16 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
   throw unknown("method", name, method_names());
 }
 
-std::vector<std::string> region_method_names() { return {"shrink_former", "shrink_adjustable_thesis", "shrink_adjustable_conservative"}; }
+std::vector<std::string> region_method_names() {
+  return {"shrink_former", "shrink_adjustable_thesis", "shrink_adjustable_conservative", "shrink_minkowski"};
+}
 
 std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, const Scene& scene,
                                                         const MethodOptions& options) {
   if (name == "shrink_former") return std::make_unique<FootprintShrinking>(scene, options);
   if (name == "shrink_adjustable_thesis") return std::make_unique<PublishedShadowShrinking>(scene, options);
   if (name == "shrink_adjustable_conservative") return std::make_unique<CertifiedShadowShrinking>(scene, options);
+  if (name == "shrink_minkowski") return std::make_unique<MinkowskiShrinking>(scene, options);
   throw unknown("region method", name, region_method_names());
 }
 

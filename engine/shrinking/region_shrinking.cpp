@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/horizon/horizon_sweep.hpp"
+#include "engine/shrinking/region_sweep.hpp"
 
 namespace cullcheck {
 namespace {
@@ -42,27 +43,6 @@ std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& p
   const double beta_min_s = beta_min - beta_s;    // Eq. 12
   if (!(beta_min_s > -kPi / 2)) return std::nullopt;
   return ShrunkShadow{shrunk, std::tan(beta_min_s)};
-}
-
-// The OH(OS) sweep (horizon_sweep.hpp) from the region's centre, culling by the region's view
-// volumes (Fig. 4.8: the frustum widened to every camera of the region; the horizon is kept over
-// the full circle, which only hides less than the widened frustum's coverage would). Buildings
-// are tested with their own CVPs; `cast` queues a visible one's shadows, shrunk as the variant
-// shrinks them.
-// `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
-// cull_region_carrying).
-template <class CastShadows>
-CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
-                        const CastShadows& cast, const std::vector<char>* known = nullptr) {
-  const auto start = std::chrono::steady_clock::now();
-  CullResult result;
-  sweep_horizon(
-      scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
-      [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); }, cast,
-      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, result);
-  std::sort(result.pvs.begin(), result.pvs.end());
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return result;
 }
 
 }  // namespace
@@ -117,14 +97,7 @@ CullResult FootprintShrinking::sweep(const ViewRegion& region, const std::vector
   return sweep_region(scene_, quadtree_, horizon_, region,
                       [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
                           const std::vector<std::optional<ConvexSpan>>&) {
-                        const Vec2 e = plan(eye);
-                        const bool may_be_clipped = distance < unclipped;
-                        for (const ConvexVerticalPrism& prism : shrunk_[index]) {
-                          const auto span = convex_span(prism.ring, e);
-                          if (!span || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-                          pending.push(max_vertex_distance(prism.ring, e), span->span,
-                                       shadow_slope(ShadowRule::conservative, prism, eye, *span));
-                        }
+                        queue_shrunk_shadows(pending, shrunk_[index], eye, distance, unclipped);
                       },
                       known);
 }

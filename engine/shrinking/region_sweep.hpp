@@ -1,0 +1,49 @@
+// The front-to-back sweep shared by the from-region shrinking methods (region_shrinking.hpp,
+// minkowski_shrinking.hpp): OH(OS)'s sweep (horizon_sweep.hpp) from the region's centre, culling
+// by the region's view volumes (Fig. 4.8: the frustum widened to every camera of the region; the
+// horizon is kept over the full circle, which only hides less than the widened frustum's coverage
+// would). Buildings are tested with their own, unshrunk CVPs; `cast` queues a visible one's
+// shadows, shrunk as the method shrinks them.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <vector>
+
+#include "engine/delta_horizon/motion_region.hpp"
+#include "engine/horizon/horizon_sweep.hpp"
+
+namespace cullcheck {
+
+// `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
+// cull_region_carrying): they are accepted untested and cast their shadows.
+template <class CastShadows>
+CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
+                        const CastShadows& cast, const std::vector<char>* known = nullptr) {
+  const auto start = std::chrono::steady_clock::now();
+  CullResult result;
+  sweep_horizon(
+      scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
+      [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); }, cast,
+      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, result);
+  std::sort(result.pvs.begin(), result.pvs.end());
+  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+// Queues the shadows of a visible building's occluders shrunk beforehand (the methods that shrink
+// footprints in preprocessing): each shrunk CVP with OH(OS)'s conservative rule from the centre;
+// one that may reach in front of the near plane, or that holds the eye, casts none.
+inline void queue_shrunk_shadows(ShadowQueue& pending, const std::vector<ConvexVerticalPrism>& shrunk, Vec3 eye,
+                                 double distance, double unclipped) {
+  const Vec2 e = plan(eye);
+  const bool may_be_clipped = distance < unclipped;
+  for (const ConvexVerticalPrism& prism : shrunk) {
+    const auto span = convex_span(prism.ring, e);
+    if (!span || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
+    pending.push(max_vertex_distance(prism.ring, e), span->span, shadow_slope(ShadowRule::conservative, prism, eye, *span));
+  }
+}
+
+}  // namespace cullcheck
