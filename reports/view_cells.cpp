@@ -6,22 +6,13 @@
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
 #include "engine/shrinking/circle_tiling.hpp"
+#include "generators/open_space.hpp"
 #include "generators/street_cells.hpp"
 #include "reports/statistics.hpp"
 #include "reports/verification.hpp"
 
 namespace cullcheck {
 namespace {
-
-bool inside_building(const Scene& scene, Vec2 p) {
-  for (const Building& b : scene.buildings) {
-    const Box2 box = b.bounds.plan();
-    if (p.x < box.lo.x || p.x > box.hi.x || p.y < box.lo.y || p.y > box.hi.y) continue;
-    for (const ConvexVerticalPrism& prism : b.prisms)
-      if (distance_to_convex(prism.ring, p) == 0.0) return true;
-  }
-  return false;
-}
 
 // Cells spread over the city: every k-th, k chosen so that about `n` are picked.
 std::vector<std::size_t> spread(std::size_t total, std::size_t n) {
@@ -78,12 +69,13 @@ nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, c
 
   // The oracle's answers, once per viewpoint of each checked cell, shared by every run.
   const oracle::Oracle truth(scene);
+  const generators::OpenSpace open(scene);
   std::vector<std::vector<std::pair<Camera, oracle::OracleAnswer>>> answers;
   double oracle_seconds = 0.0;
   for (std::size_t k : checked) {
     answers.emplace_back();
     for (const Camera& v : cell_viewpoints({(*cells)[chosen[k]].ring, options.eye_height})) {
-      if (inside_building(scene, plan(v.position))) continue;
+      if (open.inside_building(v.position)) continue;
       answers.back().emplace_back(v, truth.visible_set(v, options.oracle));
       oracle_seconds += answers.back().back().second.elapsed_seconds;
     }

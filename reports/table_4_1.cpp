@@ -1,0 +1,161 @@
+#include "reports/table_4_1.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "generators/camera_paths.hpp"
+#include "generators/city.hpp"
+#include "generators/open_space.hpp"
+#include "reports/statistics.hpp"
+#include "reports/verification.hpp"
+
+namespace cullcheck {
+namespace {
+
+// The thesis's increases over Method 1 at 60° (Table 4.1), where it has a row for the method.
+nlohmann::json thesis_increase(const std::string& method, int angle) {
+  if (method == "oh_os_conservative") return angle == 60 ? 0.0 : 0.06;
+  if (method == "shrink_former") return angle == 60 ? 0.68 : 0.75;
+  if (method == "shrink_adjustable_thesis") return angle == 60 ? 0.17 : 0.24;
+  return nullptr;
+}
+
+}  // namespace
+
+nlohmann::json table_4_1(const Table41Options& options, const MethodOptions& method_options) {
+  const Scene scene = generators::make_city(options.generator, options.seed, options.params);
+  SceneSource source;
+  source.generator = options.generator;
+  source.seed = options.seed;
+  source.parameters_json = options.params.dump();
+  auto walk = [&](double hfov_deg) {
+    return generators::make_camera_path("plaza_crossing", scene, 0, {{"hfov_deg", hfov_deg}});
+  };
+  const CameraPath at_60 = walk(60.0), at_90 = walk(90.0);
+
+  VerificationOptions v;
+  v.oracle = options.oracle;
+  v.oracle_stride = options.oracle_stride;
+  v.region_methods = options.region_methods.empty() ? region_method_names() : options.region_methods;
+  v.region_radius = options.radius;
+  v.path_replay_flags = "--path-kind plaza_crossing --path-params '{\"hfov_deg\":60}'";
+  const PathVerification narrow = verify_path(scene, source, at_60, {"oh_os_conservative"}, method_options, v);
+  v.region_turn = options.widen_deg * kPi / 180.0;
+  const PathVerification widened = verify_path(scene, source, at_60, {"oh_os_conservative"}, method_options, v);
+  v.region_methods.clear();
+  v.path_replay_flags = "--path-kind plaza_crossing --path-params '{\"hfov_deg\":90}'";
+  const PathVerification wide_point = verify_path(scene, source, at_90, {"oh_os_conservative"}, method_options, v);
+
+  const double reference = mean(narrow.runs[0].pvs_size);
+  nlohmann::json rows = nlohmann::json::array();
+  auto point_row = [&](const MethodRun& r, int angle) {
+    rows.push_back({{"method", r.method},
+                    {"thesis_method", "Method 1 (no shrinking, PVS for the viewpoint)"},
+                    {"viewing_angle", angle},
+                    {"pvs_mean", mean(r.pvs_size)},
+                    {"increase_over_method_1_at_60", mean(r.pvs_size) / reference - 1.0},
+                    {"thesis_increase", thesis_increase(r.method, angle)},
+                    {"witnessed_mean", mean(r.witnessed_size)},
+                    {"violations", r.violation_count},
+                    {"pvs_computed", r.pvs_size.size()},
+                    {"frames_per_pvs", 1.0},
+                    {"compute_ms_median", median(r.cull_ms)}});
+  };
+  auto region_row = [&](const RegionRun& r, int angle) {
+    const std::string label = r.method == "shrink_former" ? "Method 2 (former shrinking)"
+                              : r.method == "shrink_adjustable_thesis" ? "Method 3 (adjustable shrinking, as published)"
+                                                                       : "Method 3 variant";
+    rows.push_back({{"method", r.method},
+                    {"thesis_method", label},
+                    {"viewing_angle", angle},
+                    {"claims_conservative", r.claims_conservative},
+                    {"pvs_mean", mean(r.pvs_size)},
+                    {"increase_over_method_1_at_60", mean(r.pvs_size) / reference - 1.0},
+                    {"thesis_increase", thesis_increase(r.method, angle)},
+                    {"witnessed_mean", mean(r.witnessed_size)},
+                    {"violations", r.violation_count},
+                    {"pvs_computed", r.compute_ms.size()},
+                    {"frames_per_pvs", static_cast<double>(r.pvs_size.size()) / std::max<double>(1, r.compute_ms.size())},
+                    {"compute_ms_median", median(r.compute_ms)}});
+  };
+  point_row(narrow.runs[0], 60);
+  for (const RegionRun& r : narrow.regions) region_row(r, 60);
+  point_row(wide_point.runs[0], 90);
+  for (const RegionRun& r : widened.regions) region_row(r, 90);
+  // The disc's witnessed union: a lower bound on any conservative region PVS at that frame.
+  nlohmann::json disc = nlohmann::json::array();
+  const oracle::Oracle truth(scene);
+  const generators::OpenSpace open(scene);
+  const std::size_t stride = std::max<std::size_t>(1, options.oracle_stride * options.disc_stride);
+  for (const int angle : {60, 90}) {
+    std::vector<double> unions, points, centres;
+    for (std::size_t f = 0; f < at_60.frames.size(); f += stride) {
+      const Camera& c = at_60.frames[f];
+      std::vector<ObjectId> seen;
+      for (int k = 0; k < 13; ++k) {
+        const double reach = k == 0 ? 0.0 : k <= 8 ? options.radius : options.radius / 2;
+        const double a = k <= 8 ? (k - 1) * kPi / 4 : (k - 9) * kPi / 2 + kPi / 4;
+        Camera v = c;
+        v.position = {c.position.x + reach * std::cos(a), c.position.y + reach * std::sin(a), c.position.z};
+        if (open.inside_building(v.position)) continue;
+        for (const double turn : angle == 60 ? std::vector<double>{0.0} : std::vector<double>{-1.0, 0.0, 1.0}) {
+          v.yaw = std::fmod(c.yaw + turn * options.widen_deg * kPi / 180.0 + kTwoPi, kTwoPi);
+          const oracle::OracleAnswer answer = truth.visible_set(v, options.oracle);
+          if (k == 0 && turn == 0.0) centres.push_back(static_cast<double>(answer.visible.size()));
+          seen.insert(seen.end(), answer.visible.begin(), answer.visible.end());
+        }
+      }
+      std::sort(seen.begin(), seen.end());
+      seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+      unions.push_back(static_cast<double>(seen.size()));
+      points.push_back(narrow.runs[0].pvs_size[f]);
+    }
+    disc.push_back({{"viewing_angle", angle},
+                    {"frames", unions.size()},
+                    {"witnessed_union_mean", mean(unions)},
+                    {"point_pvs_mean", mean(points)},
+                    {"least_possible_increase", mean(unions) / mean(points) - 1.0},
+                    {"witnessed_centre_mean", mean(centres)},
+                    {"witnessed_increase", mean(unions) / mean(centres) - 1.0}});
+  }
+  return {{"scene", {{"generator", options.generator}, {"seed", options.seed}, {"parameters", options.params},
+                     {"buildings", scene.buildings.size()}}},
+          {"path", {{"kind", "plaza_crossing"}, {"frames", at_60.frames.size()}}},
+          {"radius", options.radius},
+          {"widen_deg", options.widen_deg},
+          {"oracle_frames", narrow.oracle.frames_checked},
+          {"rows", rows},
+          {"disc_witnessed", disc}};
+}
+
+std::string table_4_1_text(const nlohmann::json& table) {
+  std::string out = "Table 4.1 (thesis ch. 4.2) on " + std::to_string(table["scene"]["buildings"].get<std::size_t>()) +
+                    " buildings, " + std::to_string(table["path"]["frames"].get<std::size_t>()) +
+                    " frames of the plaza crossing, eps " + std::to_string(table["radius"].get<double>()) + " m\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "%-32s %5s %8s %9s %9s %9s %6s %8s\n", "method", "angle", "pvs", "increase", "thesis",
+                "witnessed", "viol", "pvs/walk");
+  out += line;
+  for (const auto& r : table["rows"]) {
+    char thesis[16] = "-";
+    if (!r["thesis_increase"].is_null()) std::snprintf(thesis, sizeof thesis, "%+.0f%%", 100 * r["thesis_increase"].get<double>());
+    std::snprintf(line, sizeof line, "%-32s %5d %8.1f %+8.0f%% %9s %9.1f %6llu %8zu\n", r["method"].get<std::string>().c_str(),
+                  r["viewing_angle"].get<int>(), r["pvs_mean"].get<double>(),
+                  100 * r["increase_over_method_1_at_60"].get<double>(), thesis, r["witnessed_mean"].get<double>(),
+                  static_cast<unsigned long long>(r["violations"].get<std::uint64_t>()), r["pvs_computed"].get<std::size_t>());
+    out += line;
+  }
+  for (const auto& d : table["disc_witnessed"]) {
+    std::snprintf(line, sizeof line,
+                  "disc witnessed (%d°, %zu frames): union %.1f buildings (%+.0f%% over the %.1f witnessed at the centre), "
+                  "point PVS %.1f: no conservative region PVS can be below %+.0f%%\n",
+                  d["viewing_angle"].get<int>(), d["frames"].get<std::size_t>(), d["witnessed_union_mean"].get<double>(),
+                  100 * d["witnessed_increase"].get<double>(), d["witnessed_centre_mean"].get<double>(),
+                  d["point_pvs_mean"].get<double>(), 100 * d["least_possible_increase"].get<double>());
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace cullcheck
