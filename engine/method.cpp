@@ -35,7 +35,8 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
 }
 
 std::vector<std::string> region_method_names() {
-  return {"shrink_former", "shrink_adjustable_thesis", "shrink_adjustable_conservative", "shrink_minkowski"};
+  return {"shrink_former", "shrink_adjustable_thesis", "shrink_adjustable_conservative", "shrink_minkowski",
+          "shrink_adjustable_corrected"};
 }
 
 std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, const Scene& scene,
@@ -43,6 +44,7 @@ std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, c
   if (name == "shrink_former") return std::make_unique<FootprintShrinking>(scene, options);
   if (name == "shrink_adjustable_thesis") return std::make_unique<PublishedShadowShrinking>(scene, options);
   if (name == "shrink_adjustable_conservative") return std::make_unique<CertifiedShadowShrinking>(scene, options);
+  if (name == "shrink_adjustable_corrected") return std::make_unique<PublishedShadowShrinking>(scene, options, true);
   if (name == "shrink_minkowski") return std::make_unique<MinkowskiShrinking>(scene, options);
   throw unknown("region method", name, region_method_names());
 }

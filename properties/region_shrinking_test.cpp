@@ -122,6 +122,9 @@ RC_GTEST_PROP(RegionShrinking, CertifiedShrinkingHoldsOverTheDisc, ()) {
   holds_over_the_disc("shrink_adjustable_conservative");
 }
 RC_GTEST_PROP(RegionShrinking, MinkowskiShrinkingHoldsOverTheDisc, ()) { holds_over_the_disc("shrink_minkowski"); }
+RC_GTEST_PROP(RegionShrinking, CorrectedAdjustableShrinkingHoldsOverTheDisc, ()) {
+  holds_over_the_disc("shrink_adjustable_corrected");
+}
 
 // Footprint shrinking moves every edge inward by ε: a 10 m square becomes an 8 m one for ε = 1 m;
 // a 1 m slab disappears for ε = 0.6 m; a sharp corner moves by more than ε (Fig. 4.3).

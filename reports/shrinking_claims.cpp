@@ -31,7 +31,7 @@ struct Variant {
 
 std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<Variant> variants(4);
+  std::vector<Variant> variants(5);
   auto set = [](Variant& v, const char* id, const char* source, const char* statement, const char* method, bool open) {
     v.claim.id = id;
     v.claim.source = source;
@@ -51,6 +51,10 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
   set(variants[3], "cullcheck-certified-shrinking", "cullcheck (region certificate, engine/delta_horizon/)",
       "the certified region PVS holds everything visible from any viewpoint of the ε-disc",
       "shrink_adjustable_conservative", false);
+  set(variants[4], "cullcheck-corrected-adjustable-shrinking", "cullcheck (thesis Eq. 4-16 corrected, region_shrinking.hpp)",
+      "the published method with the conservative shadow rule, Eq. 13-14 with h_C - h_X and shadows merged 2ε late holds "
+      "everything visible from any viewpoint of the ε-disc",
+      "shrink_adjustable_corrected", false);
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
   const double radii[] = {0.5, 2.0, 8.0};

@@ -45,10 +45,31 @@ std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& p
   return ShrunkShadow{shrunk, std::tan(beta_min_s)};
 }
 
+// The corrected variant's shadow (region_shrinking.hpp): Eq. 4-6's horizontal shrink, the
+// conservative rule's slope s = r / d shrunk to the sight line from the disc's farthest
+// (r > 0) or nearest (r < 0) point.
+std::optional<ShrunkShadow> corrected_shrunk_shadow(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span,
+                                                    double epsilon) {
+  const Vec2 c = plan(eye);
+  const double to_e = length(prism.ring[span.first_tangent] - c);
+  const double to_a = length(prism.ring[span.last_tangent] - c);
+  if (!(to_e > epsilon) || !(to_a > epsilon)) return std::nullopt;
+  const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a)};
+  if (!(shrunk.end > shrunk.begin)) return std::nullopt;
+  const double slope = shadow_slope(ShadowRule::conservative, prism, eye, span);
+  const double rise = prism.height - eye.z;
+  if (rise == 0.0 || slope == 0.0) return ShrunkShadow{shrunk, 0.0};
+  const double d = rise / slope;  // the distance of the shadow's edge
+  if (!(d > 0.0)) return std::nullopt;
+  if (rise > 0.0) return ShrunkShadow{shrunk, rise / (d + epsilon)};
+  if (!(d > epsilon)) return std::nullopt;
+  return ShrunkShadow{shrunk, rise / (d - epsilon)};
+}
+
 }  // namespace
 
-PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options, bool corrected)
+    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins), corrected_(corrected) {}
 
 CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr); }
 CullResult PublishedShadowShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) {
@@ -64,8 +85,12 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                         for (std::size_t p = 0; p < building.prisms.size(); ++p) {
                           const ConvexVerticalPrism& prism = building.prisms[p];
                           if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-                          const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
-                          if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
+                          if (!corrected_) {
+                            const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
+                            if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
+                          } else if (const auto shadow = corrected_shrunk_shadow(prism, eye, *spans[p], region.radius)) {
+                            pending.push(max_vertex_distance(prism.ring, e) + 2 * region.radius, shadow->span, shadow->slope);
+                          }
                         }
                       },
                       known);

@@ -35,11 +35,19 @@
 
 namespace cullcheck {
 
+// `corrected`: shrink_adjustable_corrected — the published method with the three things the oracle
+// refuted replaced (properties/region_extremes_test.cpp, the claims ledger): OH(OS)'s conservative
+// shadow rule instead of the published β_min; the vertical shrink as the sight line over the
+// shadow's edge from the disc's farthest (taller than the eye: slope r / (d + ε)) or nearest
+// (lower: r / (d - ε), no shadow when d <= ε) point, which is Eq. 9-12 unchanged and Eq. 13-14
+// with the geometry's h_C - h_X where the thesis prints h_C + h_X; and each shadow merged only
+// once the sweep is 2ε beyond the CVP's farthest point (a disc viewpoint may meet things in
+// another order). Not proven: the claims ledger and the oracle properties decide.
 class PublishedShadowShrinking final : public RegionCullingMethod {
  public:
-  PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {});
-  std::string name() const override { return "shrink_adjustable_thesis"; }
-  bool claims_conservative() const override { return false; }
+  PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {}, bool corrected = false);
+  std::string name() const override { return corrected_ ? "shrink_adjustable_corrected" : "shrink_adjustable_thesis"; }
+  bool claims_conservative() const override { return corrected_; }
   CullResult cull_region(const ViewRegion& region) override;
   CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override;
   bool carries_known() const override { return true; }
@@ -50,6 +58,7 @@ class PublishedShadowShrinking final : public RegionCullingMethod {
   const Scene& scene_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_;
+  bool corrected_;
 };
 
 class FootprintShrinking final : public RegionCullingMethod {
