@@ -126,6 +126,32 @@ RC_GTEST_PROP(RegionShrinking, CorrectedAdjustableShrinkingHoldsOverTheDisc, ())
   holds_over_the_disc("shrink_adjustable_corrected");
 }
 
+// The claims ledger's counterexample to the first corrected variant (which dropped a shadow only
+// when a tangent vertex lay within ε, as the published method does): a street wall reaching into
+// the ε = 2 m disc between its tangent vertices hid building 1 from the centre, and the disc's
+// edge 2 m west sees it. The published method misses it too; the corrected one now keeps it.
+TEST(RegionShrinking, WallReachingIntoTheDiscRegression) {
+  const Scene scene = generators::make_city(
+      "manhattan", 1020,
+      {{"block_size", 39}, {"blocks_x", 6}, {"blocks_y", 5}, {"buildings_per_block", 3}, {"street_width", 10}, {"thin_fraction", 0.3}});
+  Camera centre;
+  centre.position = {-32.470363384499095, 102.36475659855616, 1.7};
+  centre.yaw = 3.5878569354773195;
+  centre.hfov = 1.5707963267948966;
+  centre.vfov = 1.1780972450961724;
+  Camera edge = centre;
+  edge.position = {-34.46983129919285, 102.31862571833243, 1.7};
+  const std::vector<ObjectId> seen = oracle::Oracle(scene).visible_set(edge, property_oracle()).visible;
+  ASSERT_TRUE(std::binary_search(seen.begin(), seen.end(), ObjectId{1})) << "the oracle no longer sees building 1";
+  for (const std::string method : {"shrink_adjustable_corrected", "shrink_former", "shrink_adjustable_conservative"}) {
+    const std::vector<ObjectId> pvs = make_region_method(method, scene)->cull_region({centre, 2.0, 0.0}).pvs;
+    EXPECT_TRUE(std::binary_search(pvs.begin(), pvs.end(), ObjectId{1})) << method << " culls building 1";
+  }
+  const std::vector<ObjectId> published = make_region_method("shrink_adjustable_thesis", scene)->cull_region({centre, 2.0, 0.0}).pvs;
+  if (std::binary_search(published.begin(), published.end(), ObjectId{1}))
+    std::printf("  note: shrink_adjustable_thesis now keeps building 1 here\n");
+}
+
 // Footprint shrinking moves every edge inward by ε: a 10 m square becomes an 8 m one for ε = 1 m;
 // a 1 m slab disappears for ε = 0.6 m; a sharp corner moves by more than ε (Fig. 4.3).
 TEST(FootprintShrinking, MovesEdgesInwardAndDropsThinOccluders) {

@@ -53,7 +53,9 @@ std::optional<ShrunkShadow> corrected_shrunk_shadow(const ConvexVerticalPrism& p
   const Vec2 c = plan(eye);
   const double to_e = length(prism.ring[span.first_tangent] - c);
   const double to_a = length(prism.ring[span.last_tangent] - c);
-  if (!(to_e > epsilon) || !(to_a > epsilon)) return std::nullopt;
+  // A CVP that reaches into the disc has viewpoints beside or behind it: no shadow (the ledger's
+  // counterexample to the published method has a wall crossing the disc between its tangents).
+  if (!(min_boundary_distance(prism.ring, c) > epsilon)) return std::nullopt;
   const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a)};
   if (!(shrunk.end > shrunk.begin)) return std::nullopt;
   const double slope = shadow_slope(ShadowRule::conservative, prism, eye, span);

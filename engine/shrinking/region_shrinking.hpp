@@ -42,7 +42,8 @@ namespace cullcheck {
 // (lower: r / (d - ε), no shadow when d <= ε) point, which is Eq. 9-12 unchanged and Eq. 13-14
 // with the geometry's h_C - h_X where the thesis prints h_C + h_X; and each shadow merged only
 // once the sweep is 2ε beyond the CVP's farthest point (a disc viewpoint may meet things in
-// another order). Not proven: the claims ledger and the oracle properties decide.
+// another order); a CVP that comes within ε of the centre casts no shadow (the published method
+// drops only those whose tangent vertices do). Not proven: the claims ledger and the oracle properties decide.
 class PublishedShadowShrinking final : public RegionCullingMethod {
  public:
   PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {}, bool corrected = false);
