@@ -3,6 +3,7 @@
 
 #include "core/errors.hpp"
 #include "generators/city.hpp"
+#include "generators/kept_cases.hpp"
 #include "generators/params_json.hpp"
 
 namespace cullcheck::generators {
@@ -36,7 +37,7 @@ std::optional<ManhattanParams> manhattan_defaults(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& city_generator_names() {
-  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis"};
+  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "kept"};
   return names;
 }
 
@@ -45,6 +46,7 @@ nlohmann::json resolved_city_params(const std::string& name, const nlohmann::jso
   if (name == "scatter") return params_to_json(overlaid(ScatterParams{}, params, name));
   if (name == "irregular") return params_to_json(overlaid(IrregularParams{}, params, name));
   if (name == "thesis") return params_to_json(overlaid(ThesisParams{}, params, name));
+  if (name == "kept") return params_to_json(overlaid(KeptParams{}, params, name));
   unknown_generator(name);
 }
 
@@ -58,6 +60,7 @@ Scene make_city(const std::string& name, std::uint64_t seed, const nlohmann::jso
   if (name == "scatter") return scatter_city(overlaid(ScatterParams{}, params, name), seed);
   if (name == "irregular") return irregular_city(overlaid(IrregularParams{}, params, name), seed);
   if (name == "thesis") return thesis_city(overlaid(ThesisParams{}, params, name), seed);
+  if (name == "kept") return kept_city(overlaid(KeptParams{}, params, name));
   unknown_generator(name);
 }
 

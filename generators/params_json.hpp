@@ -36,6 +36,12 @@ inline void read_field(const nlohmann::json& v, double& field, const std::string
   field = v.get<double>();
 }
 
+inline void read_field(const nlohmann::json& v, std::string& field, const std::string& object, const std::string& name,
+                       const std::string& owner) {
+  if (!v.is_string()) throw InputError(object, name, owner + ": must be a string (got " + v.dump() + ")");
+  field = v.get<std::string>();
+}
+
 inline void read_field(const nlohmann::json& v, bool& field, const std::string& object, const std::string& name,
                        const std::string& owner) {
   if (!v.is_boolean()) throw InputError(object, name, owner + ": must be true or false (got " + v.dump() + ")");

@@ -24,6 +24,7 @@
 
 #include "core/scene_io.hpp"
 #include "engine/method.hpp"
+#include "generators/kept_cases.hpp"
 #include "generators/open_space.hpp"
 #include "oracle/oracle.hpp"
 #include "properties/property_oracle.hpp"
@@ -265,43 +266,11 @@ Scene eye_height_wall(double wall) {
   return s;
 }
 
-// The smallest refutation of Eq. 4-16 with the disc crossing a building: a 30 m long, 0.3 m thin,
-// 10 m high slab 2 m in front of the centre (its tangent vertices are its far ends, 15.1 m away,
-// so Eq. 4-5 shrinks its shadow by only asin(3/15.1) = 11.5 degrees a side and Eq. 9-12 lowers
-// it from 28.7 to 24.6 degrees) and one 5 m building 17-21 m out behind it (past the slab's
-// farthest vertex, where the sweep merges the slab's shadow), at 11 degrees from the centre,
-// under that shadow. ε = 3 m carries the disc through the slab: from (0, 3), between slab and
-// building, the building is in plain view.
-Scene slab_across_the_disc() {
-  Scene s;
-  s.buildings = {box_building(0, -15, 2, 15, 2.3, 10), box_building(1, -2, 17, 2, 21, 5)};
-  return s;
-}
-
-// The stronger refutation, the disc crossing nothing: a curved planter wall 1.3 m high (below a
-// 1.7 m eye) on the circle of radius 1 m around the centre (a circular segment over ±50 degrees,
-// 21 vertices on the circle, so its far chain lies 1 m out everywhere and the published and
-// conservative shadow rules agree to 4 mm), and a 0.2 m kerb stone 2.2-2.4 m out behind it.
-// ε = 0.5 m: the disc ends 0.14 m short of the planter's chord. Eq. 13-14 as printed (h_C + h_X =
-// 3.0 m where the geometry has h_C - h_X = 0.4 m) shrinks the planter's shadow to a slope of
-// -0.596 from the centre; from the disc's edge 0.5 m nearer, the sight line over the planter's far
-// edge falls at -0.8 and clears the 0.22 m stone (the centre's shadow line is 0.27 m high there,
-// the edge viewpoint's 0.18 m).
-Scene low_planter_before_a_kerb_stone() {
-  Building planter;
-  planter.id = 0;
-  planter.height = 1.3;
-  const int n = 21;
-  const double half = 50 * kPi / 180;
-  for (int k = 0; k < n; ++k) {
-    const double a = -half + 2 * half * k / (n - 1);
-    planter.footprint.push_back({std::cos(a), std::sin(a)});
-  }
-  validate_and_finish(planter);
-  Scene s;
-  s.buildings = {planter, box_building(1, 2.2, -0.2, 2.4, 0.2, 0.22)};
-  return s;
-}
+// The two kept counterexamples live in generators/kept_cases.cpp (their geometry and why each
+// refutes the published equations are documented there), so that the claims ledger and the CLI
+// replay them too: --generator kept --params '{"case":"..."}'.
+Scene slab_across_the_disc() { return generators::kept_city({"slab_across_the_disc"}); }
+Scene low_planter_before_a_kerb_stone() { return generators::kept_city({"low_planter"}); }
 
 // ---------------------------------------------------------------------------------------------
 // 1. ε → 0: the region PVS against OH(OS)'s conservative point PVS at the same camera.

@@ -199,6 +199,12 @@ TEST(RegionShrinking, MinkowskiPvsSizesAgainstTheOtherRegionMethods) {
       {"irregular", 22, {{"count", 60}, {"area_size", 300}}},
       {"irregular", 23, {{"count", 30}, {"area_size", 160}}}};
   const std::vector<std::string> methods = region_method_names();
+  const auto index_of = [&](const char* name) {
+    return static_cast<std::size_t>(std::find(methods.begin(), methods.end(), name) - methods.begin());
+  };
+  const std::size_t former_index = index_of("shrink_former"), minkowski_index = index_of("shrink_minkowski");
+  ASSERT_LT(minkowski_index, methods.size());
+  ASSERT_LT(former_index, methods.size());
   for (const double radius : {0.5, 2.0}) {
     std::vector<double> total(methods.size(), 0.0);
     double centre_total = 0.0;
@@ -226,13 +232,13 @@ TEST(RegionShrinking, MinkowskiPvsSizesAgainstTheOtherRegionMethods) {
           total[m] += static_cast<double>(pvs.back().size());
         }
         centre_total += static_cast<double>(centre_method->cull(c).pvs.size());
-        const auto& former = pvs[0];
-        const auto& minkowski = pvs[methods.size() - 1];
+        const auto& former = pvs[former_index];
+        const auto& minkowski = pvs[minkowski_index];
         minkowski_not_in_former += !std::includes(former.begin(), former.end(), minkowski.begin(), minkowski.end());
         former_not_in_minkowski += !std::includes(minkowski.begin(), minkowski.end(), former.begin(), former.end());
         ++queries;
       }
-      auto* minkowski = dynamic_cast<MinkowskiShrinking*>(engines.back().get());
+      auto* minkowski = dynamic_cast<MinkowskiShrinking*>(engines[minkowski_index].get());
       ASSERT_NE(minkowski, nullptr);
       const MinkowskiOccluderCounts& n = minkowski->occluder_counts();
       EXPECT_EQ(n.occluders + n.faces_removed + n.invalid_footprint + n.too_low, scene.buildings.size());

@@ -7,6 +7,7 @@
 
 #include "core/scene_io.hpp"
 #include "engine/method.hpp"
+#include "generators/kept_cases.hpp"
 #include "generators/open_space.hpp"
 #include "generators/random.hpp"
 #include "oracle/oracle.hpp"
@@ -57,6 +58,32 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
       "shrink_adjustable_corrected", false);
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
+  // The kept counterexamples first (generators/kept_cases.hpp): small hand-built scenes a seeded
+  // street city never builds (a planter 1 m from the eye), each with the viewpoint that refutes.
+  for (const std::string& name : generators::kept_case_names()) {
+    const generators::KeptRegionQuery q = generators::kept_region_query(name);
+    SceneSource source;
+    source.generator = "kept";
+    source.seed = 0;
+    source.parameters_json = nlohmann::json{{"case", name}}.dump();
+    const Scene scene = source.load();
+    const oracle::OracleAnswer seen = oracle::Oracle(scene).visible_set(q.from, oracle_options);
+    for (Variant& variant : variants) {
+      if (variant.open_discs_only && !q.disc_in_open_ground) continue;
+      ++variant.claim.frames_checked;
+      const std::vector<ObjectId> pvs = make_region_method(variant.method, scene)->cull_region({q.centre, q.radius, 0.0}).pvs;
+      for (ObjectId id : missing_from(seen.visible, pvs)) {
+        ++variant.claim.violations;
+        if (!variant.claim.holds) continue;
+        variant.claim.holds = false;
+        variant.claim.counterexample_replay = region_replay_command(source, variant.method, q.centre, q.radius, 0.0, q.from);
+        variant.claim.counterexample_detail = "building " + std::to_string(id) + " seen by the oracle (" + seen.model +
+                                              ") from the disc's edge, ε = " + round_trip_text(q.radius) +
+                                              " m, kept case '" + name + "'" +
+                                              (q.disc_in_open_ground ? " (open disc)" : " (the disc crosses a building)");
+      }
+    }
+  }
   const double radii[] = {0.5, 2.0, 8.0};
   for (int index = 0; index < options.scenes; ++index) {
     const SceneSource source = search_scene(options.seed, index);

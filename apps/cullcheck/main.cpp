@@ -39,7 +39,7 @@ constexpr int kExitInternalError = 3;
 struct SceneFlags {
   cc::SceneSource source;
   void add(CLI::App& app) {
-    app.add_option("--generator", source.generator, "City generator (manhattan, plaza, default, scatter, irregular, thesis)")
+    app.add_option("--generator", source.generator, "City generator (manhattan, plaza, default, scatter, irregular, thesis, kept)")
         ->capture_default_str();
     app.add_option("--seed", source.seed, "Generator seed")->capture_default_str();
     app.add_option("--params", source.parameters_json, "Generator parameters as JSON, overlaid on its defaults")
