@@ -281,7 +281,10 @@ TEST(Cities, BadParametersAreTypedErrors) {
   expect_error("thesis", {{"grid_x", 5000}, {"grid_y", 5000}}, "grid_y");
   expect_error("default", json::array(), "params");
   EXPECT_NO_THROW(make_city("scatter", 1, nullptr));
-  EXPECT_EQ(city_generator_names().size(), 6u);
+  expect_error("kept", {{"case", "no_such_case"}}, "case");
+  expect_error("kept", {{"case", 3}}, "case");
+  EXPECT_NO_THROW(make_city("kept", 0, {{"case", "slab_across_the_disc"}}));
+  EXPECT_EQ(city_generator_names().size(), 7u);
 }
 
 // --- Camera paths ---------------------------------------------------------------------------------
