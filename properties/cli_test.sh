@@ -27,7 +27,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report region; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region cell; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
@@ -70,6 +70,28 @@ expect_exit 2 "unknown region method" "$cc" region --scene "$work/a.json" --meth
 expect_error_names "unknown region method" "unknown region method 'nonsense'"
 expect_exit 2 "unknown region method in verify" "$cc" verify --scene "$work/a.json" --camera "$camera" --region-method nonsense
 expect_error_names "unknown region method in verify" "unknown method 'nonsense'"
+# View cells: a street cell's PVS, the same with a given polygon, bad cells named.
+expect_exit 0 "cell" "$cc" cell --generator manhattan --seed 3 --params '{"blocks_x":2,"blocks_y":2}' --cell 4 \
+  --method shrink_former --sampling tiled --epsilon 2
+grep -q '"samples"' "$work/out" && pass || fail "cell: no samples in the output"
+expect_exit 0 "cell from a polygon, checked from inside" "$cc" cell --generator manhattan --seed 3 \
+  --params '{"blocks_x":2,"blocks_y":2}' --ring '[[-8,-8],[8,-8],[8,8],[-8,8]]' --method shrink_adjustable_corrected \
+  --from '{"position":[2,3,1.7],"hfov":6.283185307179586}'
+grep -q '"missed":\[\]' "$work/out" && pass || fail "cell: a conservative cell PVS misses a building from inside"
+expect_exit 2 "cell out of range" "$cc" cell --generator manhattan --params '{"blocks_x":2,"blocks_y":2}' --cell 999
+expect_error_names "cell out of range" "street cells"
+expect_exit 2 "clockwise cell" "$cc" cell --generator manhattan --ring '[[0,0],[0,5],[5,5],[5,0]]'
+expect_error_names "clockwise cell" "counter-clockwise"
+expect_exit 2 "cell sampling" "$cc" cell --generator manhattan --cell 1 --sampling everywhere
+expect_error_names "cell sampling" "boundary, tiled"
+expect_exit 2 "view cells need street cells" "$cc" report --generator scatter --path-kind fly_through --path-params '{"frames":2}' \
+  --claim-scenes 1 --view-cells -o "$work/vc.json"
+expect_error_names "view cells need street cells" "has no street cells"
+expect_exit 0 "kept counterexample replays" "$cc" region --generator kept --params '{"case":"low_planter"}' \
+  --method shrink_adjustable_thesis --camera '{"position":[0,0,1.7],"hfov":6.283185307179586}' --radius 0.5 \
+  --from '{"position":[0.5,0,1.7],"hfov":6.283185307179586}'
+grep -q '"missed":\[1\]' "$work/out" && pass || fail "kept case: the published equations no longer miss the kerb stone"
+
 expect_exit 2 "unknown generator" "$cc" generate --generator moon -o "$work/c.json"
 expect_error_names "unknown generator" "generator"
 expect_exit 2 "bad generator parameter" "$cc" generate --generator manhattan --params '{"blocks_x":-4}' -o "$work/c.json"

@@ -25,6 +25,12 @@ std::vector<std::size_t> spread(std::size_t total, std::size_t n) {
 
 }  // namespace
 
+void require_street_cells(const Scene& scene) {
+  if (!generators::street_cells_of(scene))
+    throw InputError("view cells", "scene", "has no street cells: generator '" + scene.provenance.generator +
+                                                "' is not of the Manhattan family (manhattan, plaza, default, thesis)");
+}
+
 std::vector<Camera> cell_viewpoints(const ViewCell& cell, const Camera& clip) {
   std::vector<Vec2> points;
   const auto& r = cell.ring;
@@ -60,9 +66,8 @@ std::string cell_replay_command(const SceneSource& source, const std::string& me
 
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
                                 const MethodOptions& method_options) {
+  require_street_cells(scene);
   const auto cells = generators::street_cells_of(scene);
-  if (!cells) throw InputError("view cells", "scene", "has no street cells: generator '" + scene.provenance.generator +
-                                                           "' is not of the Manhattan family (manhattan, plaza, default, thesis)");
   std::vector<std::size_t> chosen;
   for (std::size_t c = 0; c < cells->size(); c += std::max<std::size_t>(1, options.cell_stride)) chosen.push_back(c);
   const std::vector<std::size_t> checked = spread(chosen.size(), options.oracle_cells);

@@ -34,6 +34,9 @@ std::vector<Camera> cell_viewpoints(const ViewCell& cell, const Camera& clip = {
 std::string cell_replay_command(const SceneSource& source, const std::string& method, std::uint32_t cell, double epsilon,
                                 CellSampling sampling, double eye_height, const Camera& from);
 
+// Throws InputError when the scene has no street cells (not from a Manhattan-family generator).
+void require_street_cells(const Scene& scene);
+
 // {"epsilon", "eye_height", "cells", "cells_computed", "runs": [{method, sampling, carry, ...}]}.
 // Throws InputError when the scene has no street cells (not from a Manhattan-family generator).
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,

@@ -447,6 +447,7 @@ int main(int argc, char** argv) {
     }
     if (*report) {
       const cc::Scene scene = report_scene.source.load();
+      if (view_cells) cc::require_street_cells(scene);  // fail before the long run, not after
       const cc::CameraPath path = report_path.load(scene);
       cc::VerificationOptions options;
       options.oracle.sampling = report_sampling.sampling;
