@@ -44,6 +44,14 @@ inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalized(Vec3 a) { return a * (1.0 / length(a)); }
 constexpr Vec2 plan(Vec3 a) { return {a.x, a.y}; }
 
+// Plan distance from p to the segment a-b (a point when a == b).
+inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return length(p - (a + ab * t));
+}
+
 // Azimuth of a plan-view direction, in [0, 2*pi).
 inline double azimuth_of(Vec2 d) {
   double a = std::atan2(d.y, d.x);

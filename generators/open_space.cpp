@@ -6,13 +6,6 @@
 namespace cullcheck::generators {
 namespace {
 
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return length(p - (a + ab * t));
-}
-
 Box2 plan_box(const Building& b) { return b.bounds.plan(); }
 
 }  // namespace

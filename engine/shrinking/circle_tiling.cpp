@@ -27,11 +27,8 @@ double distance_to_convex(const std::vector<Vec2>& ring, Vec2 p) {
   bool inside = true;
   double best = HUGE_VAL;
   for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    const Vec2 a = ring[j], d = ring[i] - ring[j];
-    if (cross(d, p - a) < 0.0) inside = false;
-    const double len2 = dot(d, d);
-    const double t = len2 > 0.0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, length(p - (a + d * t)));
+    if (cross(ring[i] - ring[j], p - ring[j]) < 0.0) inside = false;
+    best = std::min(best, distance_to_segment(p, ring[j], ring[i]));
   }
   return inside ? 0.0 : best;
 }

@@ -9,21 +9,14 @@
 namespace cullcheck {
 namespace {
 
-double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double len2 = dot(d, d);
-  const double t = len2 > 0.0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-  return length(p - (a + d * t));
-}
-
 // Plan distance between two segments: zero when they cross, else the least of the four
 // endpoint-to-segment distances.
 double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);
   const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);
   if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return 0.0;
-  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d), point_segment_distance(c, a, b),
-                   point_segment_distance(d, a, b)});
+  return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d), distance_to_segment(c, a, b),
+                   distance_to_segment(d, a, b)});
 }
 
 // Crossing-number test; points on the boundary are excluded by the distance check anyway.
@@ -111,35 +104,15 @@ MinkowskiOccluder minkowski_occluder(const Building& building, double epsilon) {
   return out;
 }
 
-MinkowskiShrinking::MinkowskiShrinking(const Scene& scene, const MethodOptions& options)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
-
-CullResult MinkowskiShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr); }
-CullResult MinkowskiShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) {
-  return sweep(region, &known);
-}
-CullResult MinkowskiShrinking::sweep(const ViewRegion& region, const std::vector<char>* known) {
-  if (!shrunk_radius_ || *shrunk_radius_ != region.radius) {
-    shrunk_.assign(scene_.buildings.size(), {});
-    counts_ = {};
-    for (std::size_t b = 0; b < scene_.buildings.size(); ++b) {
-      MinkowskiOccluder occluder = minkowski_occluder(scene_.buildings[b], region.radius);
-      switch (occluder.outcome) {
-        case MinkowskiOutcome::occluder: ++counts_.occluders; break;
-        case MinkowskiOutcome::faces_removed: ++counts_.faces_removed; break;
-        case MinkowskiOutcome::invalid_footprint: ++counts_.invalid_footprint; break;
-        case MinkowskiOutcome::too_low: ++counts_.too_low; break;
-      }
-      shrunk_[b] = std::move(occluder.prisms);
-    }
-    shrunk_radius_ = region.radius;
+std::vector<ConvexVerticalPrism> MinkowskiShrinking::shrink(std::size_t b, double epsilon) {
+  MinkowskiOccluder occluder = minkowski_occluder(scene_.buildings[b], epsilon);
+  switch (occluder.outcome) {
+    case MinkowskiOutcome::occluder: ++counts_.occluders; break;
+    case MinkowskiOutcome::faces_removed: ++counts_.faces_removed; break;
+    case MinkowskiOutcome::invalid_footprint: ++counts_.invalid_footprint; break;
+    case MinkowskiOutcome::too_low: ++counts_.too_low; break;
   }
-  return sweep_region(scene_, quadtree_, horizon_, region,
-                      [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
-                          const std::vector<std::optional<ConvexSpan>>&) {
-                        queue_shrunk_shadows(pending, shrunk_[index], eye, distance, unclipped);
-                      },
-                      known);
+  return std::move(occluder.prisms);
 }
 
 }  // namespace cullcheck

@@ -39,6 +39,7 @@
 
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/method.hpp"
+#include "engine/shrinking/preshrunk_occluders.hpp"
 #include "engine/spatial/quadtree.hpp"
 
 namespace cullcheck {
@@ -64,25 +65,18 @@ struct MinkowskiOccluderCounts {
   std::size_t too_low = 0;
 };
 
-class MinkowskiShrinking final : public RegionCullingMethod {
+class MinkowskiShrinking final : public PreshrunkOccluders {
  public:
-  MinkowskiShrinking(const Scene& scene, const MethodOptions& options = {});
+  MinkowskiShrinking(const Scene& scene, const MethodOptions& options = {}) : PreshrunkOccluders(scene, options) {}
   std::string name() const override { return "shrink_minkowski"; }
   bool claims_conservative() const override { return true; }
-  CullResult cull_region(const ViewRegion& region) override;
-  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override;
-  bool carries_known() const override { return true; }
   // For the last ε used: how many buildings became occluders and why the others did not.
   const MinkowskiOccluderCounts& occluder_counts() const { return counts_; }
 
  private:
-  CullResult sweep(const ViewRegion& region, const std::vector<char>* known);
+  void begin_shrinking(double) override { counts_ = {}; }
+  std::vector<ConvexVerticalPrism> shrink(std::size_t b, double epsilon) override;
 
-  const Scene& scene_;
-  Quadtree quadtree_;
-  OcclusionHorizon horizon_;
-  std::optional<double> shrunk_radius_;
-  std::vector<std::vector<ConvexVerticalPrism>> shrunk_;  // per building: its shrunk CVPs, or none
   MinkowskiOccluderCounts counts_;
 };
 

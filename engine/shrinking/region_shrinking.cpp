@@ -98,35 +98,13 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                       known);
 }
 
-FootprintShrinking::FootprintShrinking(const Scene& scene, const MethodOptions& options)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
-
-// Wonka et al.'s shrinking as ch. 4.1.1 describes it: each occluder's footprint moved inward by ε
-// in a preprocessing step (here: per CVP, cached per ε), shadows cast by the shrunk CVPs with
-// OH(OS)'s conservative rule, everything tested unshrunk from the centre. Why it holds: a sight
-// line from the centre C to a point p that passes through a shrunk CVP at q, and the sight line
-// from any eye within ε of C (same height) to p, are at the same height at the same fraction of
-// the way and at most ε apart in plan there, so the latter passes through the unshrunk CVP.
-CullResult FootprintShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr); }
-CullResult FootprintShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) {
-  return sweep(region, &known);
-}
-CullResult FootprintShrinking::sweep(const ViewRegion& region, const std::vector<char>* known) {
-  if (!shrunk_radius_ || *shrunk_radius_ != region.radius) {
-    shrunk_.assign(scene_.buildings.size(), {});
-    for (std::size_t b = 0; b < scene_.buildings.size(); ++b)
-      for (const ConvexVerticalPrism& prism : scene_.buildings[b].prisms) {
-        auto ring = shrink_convex_ring(prism.ring, region.radius);
-        if (ring) shrunk_[b].push_back({std::move(*ring), prism.height});
-      }
-    shrunk_radius_ = region.radius;
-  }
-  return sweep_region(scene_, quadtree_, horizon_, region,
-                      [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
-                          const std::vector<std::optional<ConvexSpan>>&) {
-                        queue_shrunk_shadows(pending, shrunk_[index], eye, distance, unclipped);
-                      },
-                      known);
+// Wonka et al.'s shrinking as ch. 4.1.1 describes it: each CVP's footprint moved inward by ε
+// (preshrunk_occluders.hpp says why that holds for the disc).
+std::vector<ConvexVerticalPrism> FootprintShrinking::shrink(std::size_t b, double epsilon) {
+  std::vector<ConvexVerticalPrism> out;
+  for (const ConvexVerticalPrism& prism : scene_.buildings[b].prisms)
+    if (auto ring = shrink_convex_ring(prism.ring, epsilon)) out.push_back({std::move(*ring), prism.height});
+  return out;
 }
 
 std::optional<std::vector<Vec2>> shrink_convex_ring(const std::vector<Vec2>& ring, double by) {

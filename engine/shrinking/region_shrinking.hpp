@@ -31,6 +31,7 @@
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/method.hpp"
+#include "engine/shrinking/preshrunk_occluders.hpp"
 #include "engine/spatial/quadtree.hpp"
 
 namespace cullcheck {
@@ -62,23 +63,14 @@ class PublishedShadowShrinking final : public RegionCullingMethod {
   bool corrected_;
 };
 
-class FootprintShrinking final : public RegionCullingMethod {
+class FootprintShrinking final : public PreshrunkOccluders {
  public:
-  FootprintShrinking(const Scene& scene, const MethodOptions& options = {});
+  FootprintShrinking(const Scene& scene, const MethodOptions& options = {}) : PreshrunkOccluders(scene, options) {}
   std::string name() const override { return "shrink_former"; }
   bool claims_conservative() const override { return true; }
-  CullResult cull_region(const ViewRegion& region) override;
-  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override;
-  bool carries_known() const override { return true; }
 
  private:
-  CullResult sweep(const ViewRegion& region, const std::vector<char>* known);
-
-  const Scene& scene_;
-  Quadtree quadtree_;
-  OcclusionHorizon horizon_;
-  std::optional<double> shrunk_radius_;
-  std::vector<std::vector<ConvexVerticalPrism>> shrunk_;  // per building: its CVPs shrunk by ε
+  std::vector<ConvexVerticalPrism> shrink(std::size_t b, double epsilon) override;
 };
 
 // A convex counter-clockwise ring with every edge moved inward by `by`; empty when nothing is

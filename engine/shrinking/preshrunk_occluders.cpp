@@ -1,0 +1,25 @@
+#include "engine/shrinking/preshrunk_occluders.hpp"
+
+#include "engine/shrinking/region_sweep.hpp"
+
+namespace cullcheck {
+
+PreshrunkOccluders::PreshrunkOccluders(const Scene& scene, const MethodOptions& options)
+    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+
+CullResult PreshrunkOccluders::sweep(const ViewRegion& region, const std::vector<char>* known) {
+  if (!shrunk_radius_ || *shrunk_radius_ != region.radius) {
+    begin_shrinking(region.radius);
+    shrunk_.assign(scene_.buildings.size(), {});
+    for (std::size_t b = 0; b < scene_.buildings.size(); ++b) shrunk_[b] = shrink(b, region.radius);
+    shrunk_radius_ = region.radius;
+  }
+  return sweep_region(scene_, quadtree_, horizon_, region,
+                      [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
+                          const std::vector<std::optional<ConvexSpan>>&) {
+                        queue_shrunk_shadows(pending, shrunk_[index], eye, distance, unclipped);
+                      },
+                      known);
+}
+
+}  // namespace cullcheck
