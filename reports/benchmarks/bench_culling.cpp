@@ -1,4 +1,4 @@
-// Google Benchmark drivers: generation time; thesis Table 3.2 (OH(IS), OH(OS), ΔH culling time
+// Google Benchmark drivers: generation time; view-cell PVSs (issue 4); thesis Table 3.2 (OH(IS), OH(OS), ΔH culling time
 // along a 1,000-frame street walk on the 160,000-building city); and how each method's cost grows
 // with the city (10k, 40k, 160k, 640k buildings). Each benchmark repeats five times and reports
 // the median; compare methods as ratios of medians from one run, never across runs or machines.
@@ -15,6 +15,8 @@
 #include "engine/spatial/quadtree.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
+#include "generators/street_cells.hpp"
+#include "engine/shrinking/view_cell.hpp"
 
 namespace cullcheck {
 namespace {
@@ -157,6 +159,33 @@ CULLCHECK_SIZE_BENCH(frustum);
 CULLCHECK_SIZE_BENCH(oh_is);
 CULLCHECK_SIZE_BENCH(oh_os_conservative);
 CULLCHECK_SIZE_BENCH(delta_h_guarded);
+
+// From-region PVS of view cells (issue 4): the default city's street cells k * 37, boundary
+// samples 2ε apart (ε = √2 m), each region method with and without decisions carried between
+// neighbouring samples (arg 1 / 0). One iteration computes one cell.
+void BM_ViewCell(benchmark::State& state, const std::string& method_name) {
+  static const Scene scene = generators::make_city("default", 1, nlohmann::json::object());
+  static const std::vector<generators::NavigableRegion> cells = *generators::street_cells_of(scene);
+  auto method = make_region_method(method_name, scene);
+  const bool carry = state.range(0) != 0;
+  std::size_t next = 0;
+  double pvs = 0, cells_done = 0;
+  for (auto _ : state) {
+    const ViewCell cell{cells[(next++ * 37) % cells.size()].ring, 1.7};
+    const ViewCellResult r = view_cell_pvs(*method, scene, cell, 1.4142135623730951, CellSampling::boundary, carry);
+    pvs += static_cast<double>(r.pvs.size());
+    ++cells_done;
+  }
+  state.counters["pvs_per_cell"] = pvs / cells_done;
+}
+#define CULLCHECK_CELL_BENCH(method)                                                             \
+  BENCHMARK_CAPTURE(BM_ViewCell, method, std::string(#method))                                   \
+      ->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true)
+CULLCHECK_CELL_BENCH(shrink_former);
+CULLCHECK_CELL_BENCH(shrink_adjustable_thesis);
+CULLCHECK_CELL_BENCH(shrink_adjustable_corrected);
+CULLCHECK_CELL_BENCH(shrink_adjustable_conservative);
+CULLCHECK_CELL_BENCH(shrink_minkowski);
 
 }  // namespace
 }  // namespace cullcheck
