@@ -7,4 +7,6 @@ cd "$(dirname "$0")/.."
 bash ci/install-deps.sh
 cmake --preset default
 cmake --build --preset default -j "$(nproc)"
-./build/apps/cullcheck/cullcheck report --output report.json
+# Also thesis Table 4.1 on its plaza walk and the view-cell PVSs of every 10th street cell.
+./build/apps/cullcheck/cullcheck report --table-4-1 --view-cells --view-cell-stride 10 --view-cell-oracle-cells 3 \
+  --output report.json
