@@ -1,7 +1,7 @@
 // From-region PVS by occluder-shadow shrinking (thesis ch. 4.1.2, "adjustable shrinking"): a PVS
 // computed at a point that holds for every viewpoint of the ε-disc around it (ViewRegion).
 //
-// Three variants over the same front-to-back sweep as OH(OS):
+// Four variants over the same front-to-back sweep as OH(OS):
 //  - shrink_adjustable_thesis — as published. Buildings are tested from the disc's centre as in
 //    OH(OS) (the published shadow rule, β_min from the two tangent vertices); each visible CVP's
 //    shadow is shrunk before it enters the horizon: horizontally by Eq. 4-6, α_max - asin(ε/|AC|)
@@ -23,6 +23,9 @@
 //    shadows of the buildings swept (each shrunk for the region: span narrowed by asin(ε / r)
 //    per tangent vertex, elevation lowered, merged only beyond the CVP's farthest point + 2ε);
 //    conservative wherever OH(OS)'s shadows are.
+//  - shrink_adjustable_corrected — the published method with what the oracle refuted replaced
+//    (see PublishedShadowShrinking below).
+// The Minkowski mesh shrinking of the slice-wise paper is in minkowski_shrinking.hpp.
 #pragma once
 
 #include <optional>
@@ -44,7 +47,8 @@ namespace cullcheck {
 // with the geometry's h_C - h_X where the thesis prints h_C + h_X; and each shadow merged only
 // once the sweep is 2ε beyond the CVP's farthest point (a disc viewpoint may meet things in
 // another order); a CVP that comes within ε of the centre casts no shadow (the published method
-// drops only those whose tangent vertices do). Not proven: the claims ledger and the oracle properties decide.
+// drops only those whose tangent vertices do). Not proven: the claims ledger and the oracle
+// properties decide.
 class PublishedShadowShrinking final : public RegionCullingMethod {
  public:
   PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {}, bool corrected = false);
