@@ -1,6 +1,8 @@
 #include "reports/table_4_1.hpp"
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 
@@ -12,6 +14,12 @@
 
 namespace cullcheck {
 namespace {
+
+std::vector<std::string> narrow_region_names(const PathVerification& v) {
+  std::vector<std::string> out;
+  for (const RegionRun& r : v.regions) out.push_back(r.method);
+  return out;
+}
 
 // The thesis's increases over Method 1 at 60° (Table 4.1), where it has a row for the method.
 nlohmann::json thesis_increase(const std::string& method, int angle) {
@@ -88,8 +96,23 @@ nlohmann::json table_4_1(const Table41Options& options, const MethodOptions& met
   const oracle::Oracle truth(scene);
   const generators::OpenSpace open(scene);
   const std::size_t stride = std::max<std::size_t>(1, options.oracle_stride * options.disc_stride);
+  // Where each method's over-estimate lies: PVS members that no eye of the disc witnessed, by
+  // plan distance from the centre (the point method against its centre's witnesses).
+  const std::vector<std::string> region_names = narrow_region_names(narrow);
+  std::vector<std::unique_ptr<RegionCullingMethod>> engines;
+  for (const std::string& name : region_names) engines.push_back(make_region_method(name, scene, method_options));
+  auto point_engine = make_method("oh_os_conservative", scene, method_options);
+  static constexpr double kBins[] = {50.0, 150.0, 400.0};
+  auto bin_of = [&](ObjectId id, Vec2 eye) {
+    const Box2 box = scene.find(id)->bounds.plan();
+    const double d = length((box.lo + box.hi) * 0.5 - eye);
+    std::size_t b = 0;
+    while (b < 3 && d >= kBins[b]) ++b;
+    return b;
+  };
   for (const int angle : {60, 90}) {
     std::vector<double> unions, points, centres;
+    std::vector<std::array<double, 5>> unwitnessed(engines.size() + 1, std::array<double, 5>{});  // 4 bins + total
     for (std::size_t f = 0; f < at_60.frames.size(); f += stride) {
       const Camera& c = at_60.frames[f];
       std::vector<ObjectId> seen;
@@ -102,13 +125,26 @@ nlohmann::json table_4_1(const Table41Options& options, const MethodOptions& met
         for (const double turn : angle == 60 ? std::vector<double>{0.0} : std::vector<double>{-1.0, 0.0, 1.0}) {
           v.yaw = std::fmod(c.yaw + turn * options.widen_deg * kPi / 180.0 + kTwoPi, kTwoPi);
           const oracle::OracleAnswer answer = truth.visible_set(v, options.oracle);
-          if (k == 0 && turn == 0.0) centres.push_back(static_cast<double>(answer.visible.size()));
+          if (k == 0 && turn == 0.0) {
+            centres.push_back(static_cast<double>(answer.visible.size()));
+            if (angle == 60)
+              for (ObjectId id : missing_from(point_engine->cull(c).pvs, answer.visible)) {
+                unwitnessed.back()[bin_of(id, plan(c.position))] += 1;
+                unwitnessed.back()[4] += 1;
+              }
+          }
           seen.insert(seen.end(), answer.visible.begin(), answer.visible.end());
         }
       }
       std::sort(seen.begin(), seen.end());
       seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
       unions.push_back(static_cast<double>(seen.size()));
+      const double turn = angle == 60 ? 0.0 : options.widen_deg * kPi / 180.0;
+      for (std::size_t m = 0; m < engines.size(); ++m)
+        for (ObjectId id : missing_from(engines[m]->cull_region({c, options.radius, turn}).pvs, seen)) {
+          unwitnessed[m][bin_of(id, plan(c.position))] += 1;
+          unwitnessed[m][4] += 1;
+        }
       points.push_back(narrow.runs[0].pvs_size[f]);
     }
     disc.push_back({{"viewing_angle", angle},
@@ -117,7 +153,20 @@ nlohmann::json table_4_1(const Table41Options& options, const MethodOptions& met
                     {"point_pvs_mean", mean(points)},
                     {"least_possible_increase", mean(unions) / mean(points) - 1.0},
                     {"witnessed_centre_mean", mean(centres)},
-                    {"witnessed_increase", mean(unions) / mean(centres) - 1.0}});
+                    {"witnessed_increase", mean(unions) / mean(centres) - 1.0},
+                    {"unwitnessed", [&] {
+                       nlohmann::json rows = nlohmann::json::array();
+                       const double n = std::max<double>(1, unions.size());
+                       auto row = [&](const std::string& name, const std::array<double, 5>& u) {
+                         rows.push_back({{"method", name},
+                                         {"mean", u[4] / n},
+                                         {"by_distance_m", {{"0-50", u[0] / n}, {"50-150", u[1] / n},
+                                                            {"150-400", u[2] / n}, {"400+", u[3] / n}}}});
+                       };
+                       if (angle == 60) row("oh_os_conservative (point, against its centre)", unwitnessed.back());
+                       for (std::size_t m = 0; m < engines.size(); ++m) row(region_names[m], unwitnessed[m]);
+                       return rows;
+                     }()}});
   }
   return {{"scene", {{"generator", options.generator}, {"seed", options.seed}, {"parameters", options.params},
                      {"buildings", scene.buildings.size()}}},
@@ -147,6 +196,13 @@ std::string table_4_1_text(const nlohmann::json& table) {
     out += line;
   }
   for (const auto& d : table["disc_witnessed"]) {
+    for (const auto& u : d["unwitnessed"]) {
+      std::snprintf(line, sizeof line, "  %d°: %-48s unwitnessed %5.1f  (0-50 m %4.1f, 50-150 m %4.1f, 150-400 m %4.1f, 400+ m %4.1f)\n",
+                    d["viewing_angle"].get<int>(), u["method"].get<std::string>().c_str(), u["mean"].get<double>(),
+                    u["by_distance_m"]["0-50"].get<double>(), u["by_distance_m"]["50-150"].get<double>(),
+                    u["by_distance_m"]["150-400"].get<double>(), u["by_distance_m"]["400+"].get<double>());
+      out += line;
+    }
     std::snprintf(line, sizeof line,
                   "disc witnessed (%d°, %zu frames): union %.1f buildings (%+.0f%% over the %.1f witnessed at the centre), "
                   "point PVS %.1f: no conservative region PVS can be below %+.0f%%\n",

@@ -41,7 +41,8 @@ struct Table41Options {
 // {"scene", "path", "radius", "widen_deg", "rows": [{method, thesis_method, viewing_angle, pvs_mean,
 // increase_over_method_1_at_60, thesis_increase, witnessed_mean, violations, pvs_computed,
 // frames_per_pvs, compute_ms_median}], "disc_witnessed": [{viewing_angle, frames, witnessed_union_mean,
-// point_pvs_mean, least_possible_increase, witnessed_centre_mean, witnessed_increase}]}.
+// point_pvs_mean, least_possible_increase, witnessed_centre_mean, witnessed_increase, unwitnessed: [{method,
+// mean, by_distance_m}]}]}: where each method's over-estimate lies.
 nlohmann::json table_4_1(const Table41Options& options, const MethodOptions& method_options);
 std::string table_4_1_text(const nlohmann::json& table);
 
