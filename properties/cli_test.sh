@@ -87,6 +87,9 @@ expect_error_names "cell sampling" "boundary, tiled"
 expect_exit 2 "view cells need street cells" "$cc" report --generator scatter --path-kind fly_through --path-params '{"frames":2}' \
   --claim-scenes 1 --view-cells -o "$work/vc.json"
 expect_error_names "view cells need street cells" "has no street cells"
+expect_exit 2 "view-cell sampling" "$cc" report --generator default --path-params '{"frames":2}' --claim-scenes 1 \
+  --view-cells --view-cell-sampling boundary,nowhere -o "$work/vc.json"
+expect_error_names "view-cell sampling" "unknown view-cell sampling 'nowhere'"
 expect_exit 0 "kept counterexample replays" "$cc" region --generator kept --params '{"case":"low_planter"}' \
   --method shrink_adjustable_thesis --camera '{"position":[0,0,1.7],"hfov":6.283185307179586}' --radius 0.5 \
   --from '{"position":[0.5,0,1.7],"hfov":6.283185307179586}'

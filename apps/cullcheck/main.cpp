@@ -447,7 +447,15 @@ int main(int argc, char** argv) {
     }
     if (*report) {
       const cc::Scene scene = report_scene.source.load();
-      if (view_cells) cc::require_street_cells(scene);  // fail before the long run, not after
+      if (view_cells) {  // bad view-cell input fails before the long run, not after it
+        cc::require_street_cells(scene);
+        view_cell_options.samplings.clear();
+        for (std::size_t start = 0; start <= view_cell_sampling.size();) {  // comma-separated names
+          const std::size_t comma = std::min(view_cell_sampling.find(',', start), view_cell_sampling.size());
+          view_cell_options.samplings.push_back(cc::parse_cell_sampling(view_cell_sampling.substr(start, comma - start)));
+          start = comma + 1;
+        }
+      }
       const cc::CameraPath path = report_path.load(scene);
       cc::VerificationOptions options;
       options.oracle.sampling = report_sampling.sampling;
@@ -494,9 +502,6 @@ int main(int argc, char** argv) {
       }
       if (view_cells) {
         view_cell_options.methods = options.region_methods.empty() ? cc::region_method_names() : options.region_methods;
-        view_cell_options.samplings.clear();
-        for (const std::string& name : parse_methods(view_cell_sampling, {"boundary", "tiled"}))
-          view_cell_options.samplings.push_back(cc::parse_cell_sampling(name));
         view_cell_options.oracle.sampling = report_sampling.sampling;
         document["view_cells"] = cc::view_cell_report(scene, report_scene.source, view_cell_options, report_tuning.options);
         std::cout << cc::view_cell_table(document["view_cells"]);
