@@ -10,22 +10,35 @@
 namespace cullcheck {
 namespace {
 
-// The published shrunk shadow of one CVP seen from the disc's centre C (thesis Eq. 1-16), or
-// none when nothing is left of it. `span` is its span from C; the elevation β_min is the
-// published rule's (the lower of the two tangent vertices) and d_X that vertex's distance.
 struct ShrunkShadow {
   AzimuthSpan span;
   double slope;
 };
-std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span,
-                                                    double epsilon) {
-  const Vec2 c = plan(eye);
-  const double to_e = length(prism.ring[span.first_tangent] - c);  // |CE|, E at α_min
-  const double to_a = length(prism.ring[span.last_tangent] - c);   // |AC|, A at α_max
-  if (!(to_e > epsilon) || !(to_a > epsilon)) return std::nullopt;  // Eq. 4-5 undefined
-  // Eq. 4-6.
+
+// Eq. 4-6, the horizontal shrink both adjustable variants share: the span narrowed at each end
+// by asin(ε / distance of that end's tangent vertex); none when a tangent vertex lies within ε
+// (Eq. 4-5 undefined) or nothing is left.
+struct NarrowedSpan {
+  AzimuthSpan span;
+  double to_e, to_a;  // |CE| (E at α_min) and |AC| (A at α_max)
+};
+std::optional<NarrowedSpan> narrowed_span(const ConvexVerticalPrism& prism, Vec2 c, const ConvexSpan& span, double epsilon) {
+  const double to_e = length(prism.ring[span.first_tangent] - c);
+  const double to_a = length(prism.ring[span.last_tangent] - c);
+  if (!(to_e > epsilon) || !(to_a > epsilon)) return std::nullopt;
   const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a)};
   if (!(shrunk.end > shrunk.begin)) return std::nullopt;
+  return NarrowedSpan{shrunk, to_e, to_a};
+}
+
+// The published shrunk shadow of one CVP seen from the disc's centre C (thesis Eq. 1-16), or
+// none when nothing is left of it. `span` is its span from C; the elevation β_min is the
+// published rule's (the lower of the two tangent vertices) and d_X that vertex's distance.
+std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span,
+                                                    double epsilon) {
+  const auto narrowed = narrowed_span(prism, plan(eye), span, epsilon);
+  if (!narrowed) return std::nullopt;
+  const auto [shrunk, to_e, to_a] = *narrowed;
   // β_min and the distance of the vertex that gives it.
   const double h_x = prism.height, h_c = eye.z;
   const double rise = h_x - h_c;
@@ -50,14 +63,12 @@ std::optional<ShrunkShadow> published_shrunk_shadow(const ConvexVerticalPrism& p
 // (r > 0) or nearest (r < 0) point.
 std::optional<ShrunkShadow> corrected_shrunk_shadow(const ConvexVerticalPrism& prism, Vec3 eye, const ConvexSpan& span,
                                                     double epsilon) {
-  const Vec2 c = plan(eye);
-  const double to_e = length(prism.ring[span.first_tangent] - c);
-  const double to_a = length(prism.ring[span.last_tangent] - c);
   // A CVP that reaches into the disc has viewpoints beside or behind it: no shadow (the ledger's
   // counterexample to the published method has a wall crossing the disc between its tangents).
-  if (!(min_boundary_distance(prism.ring, c) > epsilon)) return std::nullopt;
-  const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a)};
-  if (!(shrunk.end > shrunk.begin)) return std::nullopt;
+  if (!(min_boundary_distance(prism.ring, plan(eye)) > epsilon)) return std::nullopt;
+  const auto narrowed = narrowed_span(prism, plan(eye), span, epsilon);
+  if (!narrowed) return std::nullopt;
+  const AzimuthSpan shrunk = narrowed->span;
   const double slope = shadow_slope(ShadowRule::conservative, prism, eye, span);
   const double rise = prism.height - eye.z;
   if (rise == 0.0 || slope == 0.0) return ShrunkShadow{shrunk, 0.0};
