@@ -31,26 +31,31 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
   std::vector<std::uint32_t> front;
   std::vector<std::optional<ConvexSpan>> spans;
   std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
+  ShadowQueue pending;
+  // Both sweeps test a building the same way, against H(t+1) (step 2) or ΔH (steps 4-5); a
+  // visible one joins the PVS and queues its shadows.
+  auto test_building = [&](const SweepItem& item, OcclusionHorizon& against) {
+    const Building& building = scene_.buildings[item.index];
+    ++stats.buildings_tested;
+    tested_at_[item.index] = frame_;
+    front.push_back(item.index);
+    if (!volume.may_intersect(building.bounds) || box_hidden(against, building.bounds.plan(), building.height, eye) ||
+        !prisms_visible(against, building, eye, spans))
+      return;
+    result.pvs.push_back(building.id);
+    queue_shadows(pending, ShadowRule::conservative, building, eye, item.distance, unclipped, spans);
+  };
 
   // Step 2: H(t+1) from the buildings in front of H(t), front to back.
   horizon_.reset();
   horizon_.restrict_to(azimuth_coverage(camera));
   horizon_.take_node_visits();
-  ShadowQueue pending;
   for (std::uint32_t b : front_) sweep.push({min_distance(e, scene_.buildings[b].bounds.plan()), true, b});
   while (!sweep.empty()) {
     const SweepItem item = sweep.top();
     sweep.pop();
     pending.merge_nearer_than(item.distance, horizon_, stats);
-    const Building& building = scene_.buildings[item.index];
-    ++stats.buildings_tested;
-    tested_at_[item.index] = frame_;
-    front.push_back(item.index);
-    if (!volume.may_intersect(building.bounds) || box_hidden(horizon_, building.bounds.plan(), building.height, eye) ||
-        !prisms_visible(horizon_, building, eye, spans))
-      continue;
-    result.pvs.push_back(building.id);
-    queue_shadows(pending, ShadowRule::conservative, building, eye, item.distance, unclipped, spans);
+    test_building(item, horizon_);
   }
   pending.merge_all(horizon_, stats);
 
@@ -82,15 +87,7 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
           });
       continue;
     }
-    const Building& building = scene_.buildings[item.index];
-    ++stats.buildings_tested;
-    tested_at_[item.index] = frame_;
-    front.push_back(item.index);
-    if (!volume.may_intersect(building.bounds) || box_hidden(delta_, building.bounds.plan(), building.height, eye) ||
-        !prisms_visible(delta_, building, eye, spans))
-      continue;
-    result.pvs.push_back(building.id);
-    queue_shadows(pending, ShadowRule::conservative, building, eye, item.distance, unclipped, spans);
+    test_building(item, delta_);
   }
   pending.merge_all(horizon_, stats, &delta_);
 
