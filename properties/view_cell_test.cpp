@@ -109,8 +109,12 @@ TEST(StreetCells, GraphIsSymmetricAndCellsHoldNoBuilding) {
       const auto& back = (*cells)[n].neighbours;
       EXPECT_TRUE(std::binary_search(back.begin(), back.end(), c.id)) << c.id << " -> " << n;
     }
-    if (c.kind == "crossing") EXPECT_TRUE(c.neighbours.size() >= 2 && c.neighbours.size() <= 4);
-    if (c.kind == "plaza") EXPECT_EQ(c.neighbours.size(), 4u);
+    if (c.kind == "crossing") {
+      EXPECT_TRUE(c.neighbours.size() >= 2 && c.neighbours.size() <= 4);
+    }
+    if (c.kind == "plaza") {
+      EXPECT_EQ(c.neighbours.size(), 4u);
+    }
     if (c.kind == "plaza") continue;  // kiosks may stand in the plaza's blocks
     Box2 box;
     for (Vec2 v : c.ring) box.extend(v);
@@ -122,7 +126,9 @@ TEST(StreetCells, GraphIsSymmetricAndCellsHoldNoBuilding) {
   }
   // Stretches touch two crossings; an inner crossing touches four stretches.
   for (const auto& c : *cells)
-    if (c.kind == "street") EXPECT_GE(c.neighbours.size(), 2u);
+    if (c.kind == "street") {
+      EXPECT_GE(c.neighbours.size(), 2u);
+    }
   EXPECT_EQ((*cells)[1 * 6 + 1].neighbours.size(), 4u);
 }
 
@@ -133,13 +139,16 @@ TEST(ViewCell, CarryingDecisionsKeepsTheUnion) {
   ASSERT_TRUE(cells.has_value());
   for (const std::string& name : region_method_names()) {
     auto method = make_region_method(name, scene);
+    ViewCellPvs cells_pvs(*method, scene);
     for (CellSampling sampling : {CellSampling::boundary, CellSampling::tiled})
       for (std::size_t c = 7; c < cells->size(); c += 97) {
         const ViewCell cell{(*cells)[c].ring, 1.7};
-        const ViewCellResult plain = view_cell_pvs(*method, scene, cell, 1.4142135623730951, sampling, false);
-        const ViewCellResult carried = view_cell_pvs(*method, scene, cell, 1.4142135623730951, sampling, true);
+        const ViewCellResult plain = cells_pvs.compute(cell, 1.4142135623730951, sampling, false);
+        const ViewCellResult carried = cells_pvs.compute(cell, 1.4142135623730951, sampling, true);
         EXPECT_EQ(plain.pvs, carried.pvs) << name << " " << cell_sampling_name(sampling) << " cell " << c;
-        if (method->carries_known()) EXPECT_LT(carried.stats.buildings_tested, plain.stats.buildings_tested);
+        if (method->carries_known()) {
+          EXPECT_LT(carried.stats.buildings_tested, plain.stats.buildings_tested);
+        }
       }
   }
 }
@@ -185,7 +194,7 @@ RC_GTEST_PROP(ViewCell, PvsHoldsFromEveryEyeInTheCell, ()) {
   const std::size_t id = c.cell_pick % cells->size();
   const ViewCell cell{(*cells)[id].ring, 1.7};
   auto method = make_region_method(c.method, scene);
-  const std::vector<ObjectId> pvs = view_cell_pvs(*method, scene, cell, c.epsilon, c.sampling, true).pvs;
+  const std::vector<ObjectId> pvs = ViewCellPvs(*method, scene).compute(cell, c.epsilon, c.sampling, true).pvs;
   const oracle::Oracle truth(scene);
   SceneSource source;
   source.generator = c.spec.generator;

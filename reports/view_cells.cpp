@@ -93,6 +93,7 @@ nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, c
   for (const std::string& name : options.methods)
     for (CellSampling sampling : options.samplings) {
       auto method = make_region_method(name, scene, method_options);
+      ViewCellPvs cells_pvs(*method, scene);
       std::vector<double> carried_ms, plain_ms, pvs, samples;
       std::uint64_t carried_tests = 0, plain_tests = 0, skipped = 0;
       std::size_t unions_differ = 0, violations = 0, viewpoints = 0;
@@ -100,12 +101,12 @@ nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, c
       std::size_t next_checked = 0;
       for (std::size_t k = 0; k < chosen.size(); ++k) {
         const ViewCell cell{(*cells)[chosen[k]].ring, options.eye_height};
-        const ViewCellResult plain = view_cell_pvs(*method, scene, cell, options.epsilon, sampling, /*carry=*/false);
+        const ViewCellResult plain = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/false);
         plain_ms.push_back(plain.stats.cull_ms);
         plain_tests += plain.stats.buildings_tested;
         ViewCellResult used = plain;
         if (method->carries_known()) {
-          used = view_cell_pvs(*method, scene, cell, options.epsilon, sampling, /*carry=*/true);
+          used = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/true);
           unions_differ += used.pvs != plain.pvs ? 1 : 0;
         }
         carried_ms.push_back(used.stats.cull_ms);

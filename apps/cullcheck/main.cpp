@@ -110,6 +110,21 @@ struct MethodFlags {
   }
 };
 
+// `region --from` and `cell --from`: the oracle's view from one eye (camera JSON) against a
+// from-region PVS, into out["from"]; the gate's exit code when a method that claims to be
+// conservative missed what it saw, else 0 (also when no eye was given).
+int check_from(const cc::Scene& scene, const std::string& from_json, const cc::oracle::SamplingOptions& sampling,
+               const std::vector<cc::ObjectId>& pvs, const cc::RegionCullingMethod& method, nlohmann::json& out) {
+  if (from_json.empty()) return 0;
+  cc::oracle::OracleOptions options;
+  options.sampling = sampling;
+  const cc::oracle::OracleAnswer seen =
+      cc::oracle::Oracle(scene).visible_set(cc::camera_from_json_text(from_json, "from"), options);
+  const std::vector<cc::ObjectId> missed = cc::missing_from(seen.visible, pvs);
+  out["from"] = {{"oracle_model", seen.model}, {"witnessed", seen.visible.size()}, {"missed", missed}};
+  return !missed.empty() && method.claims_conservative() ? kExitGateFailed : 0;
+}
+
 // From-region methods along a path (thesis ch. 4): which, and the region each PVS serves.
 struct RegionFlags {
   std::string methods;
@@ -363,17 +378,7 @@ int main(int argc, char** argv) {
       out["method"] = region_method;
       out["radius"] = region_radius;
       out["turn"] = region_turn;
-      int exit_code = 0;
-      if (!region_from.empty()) {
-        cc::VerificationOptions options;
-        options.oracle.sampling = region_sampling.sampling;
-        const cc::Camera from = cc::camera_from_json_text(region_from, "from");
-        const cc::oracle::Oracle truth(scene);
-        const cc::oracle::OracleAnswer seen = truth.visible_set(from, options.oracle);
-        const std::vector<cc::ObjectId> missed = cc::missing_from(seen.visible, r.pvs);
-        out["from"] = {{"oracle_model", seen.model}, {"witnessed", seen.visible.size()}, {"missed", missed}};
-        if (!missed.empty() && method->claims_conservative()) exit_code = kExitGateFailed;
-      }
+      const int exit_code = check_from(scene, region_from, region_sampling.sampling, r.pvs, *method, out);
       std::cout << out.dump() << "\n";
       return exit_code;
     }
@@ -400,22 +405,13 @@ int main(int argc, char** argv) {
       }
       auto method = cc::make_region_method(cell_method, scene, cell_tuning.options);
       const cc::CellSampling sampling = cc::parse_cell_sampling(cell_sampling);
-      const cc::ViewCellResult r = cc::view_cell_pvs(*method, scene, view_cell, cell_epsilon, sampling, !cell_no_carry);
+      const cc::ViewCellResult r = cc::ViewCellPvs(*method, scene).compute(view_cell, cell_epsilon, sampling, !cell_no_carry);
       nlohmann::json out = {{"method", cell_method},      {"epsilon", cell_epsilon},
                             {"sampling", cell_sampling},  {"samples", r.samples},
                             {"pvs", r.pvs},               {"pvs_size", r.pvs.size()},
                             {"cull_ms", r.stats.cull_ms}, {"buildings_tested", r.stats.buildings_tested},
                             {"accepted_untested", r.stats.items_skipped}};
-      int exit_code = 0;
-      if (!cell_from.empty()) {
-        cc::oracle::OracleOptions oracle_options;
-        oracle_options.sampling = cell_oracle_sampling.sampling;
-        const cc::Camera from = cc::camera_from_json_text(cell_from, "from");
-        const cc::oracle::OracleAnswer seen = cc::oracle::Oracle(scene).visible_set(from, oracle_options);
-        const std::vector<cc::ObjectId> missed = cc::missing_from(seen.visible, r.pvs);
-        out["from"] = {{"oracle_model", seen.model}, {"witnessed", seen.visible.size()}, {"missed", missed}};
-        if (!missed.empty() && method->claims_conservative()) exit_code = kExitGateFailed;
-      }
+      const int exit_code = check_from(scene, cell_from, cell_oracle_sampling.sampling, r.pvs, *method, out);
       std::cout << out.dump() << "\n";
       return exit_code;
     }

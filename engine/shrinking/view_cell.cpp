@@ -63,18 +63,21 @@ std::vector<Vec2> cell_samples(const ViewCell& cell, double epsilon, CellSamplin
                                             : CircleTiling{epsilon}.centres_covering(cell.ring);
 }
 
-ViewCellResult view_cell_pvs(RegionCullingMethod& method, const Scene& scene, const ViewCell& cell, double epsilon,
-                             CellSampling sampling, bool carry, const Camera& camera) {
+ViewCellPvs::ViewCellPvs(RegionCullingMethod& method, const Scene& scene) : method_(method), scene_(scene) {
+  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of_.emplace_back(scene.buildings[b].id, b);
+  std::sort(index_of_.begin(), index_of_.end());
+}
+
+ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSampling sampling, bool carry,
+                                    const Camera& camera) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Vec2> samples = cell_samples(cell, epsilon, sampling);
   ViewCellResult out;
   out.samples = samples.size();
-  std::vector<char> known(scene.buildings.size(), 0);
-  std::vector<std::pair<ObjectId, std::uint32_t>> index_of;  // (id, scene index), sorted by id
-  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of.emplace_back(scene.buildings[b].id, b);
-  std::sort(index_of.begin(), index_of.end());
+  std::vector<char>& known = known_;
+  known.assign(scene_.buildings.size(), 0);
   auto mark = [&](ObjectId id) {
-    const auto it = std::lower_bound(index_of.begin(), index_of.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
+    const auto it = std::lower_bound(index_of_.begin(), index_of_.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
     known[it->second] = 1;
   };
   Camera eye = camera;
@@ -83,7 +86,7 @@ ViewCellResult view_cell_pvs(RegionCullingMethod& method, const Scene& scene, co
   for (const Vec2 s : samples) {
     eye.position = {s.x, s.y, cell.eye_height};
     const ViewRegion region{eye, epsilon, 0.0};
-    const CullResult r = carry ? method.cull_region_carrying(region, known) : method.cull_region(region);
+    const CullResult r = carry ? method_.cull_region_carrying(region, known) : method_.cull_region(region);
     out.sample_pvs_size.push_back(r.pvs.size());
     for (ObjectId id : r.pvs) mark(id);
     const CullStatistics& s2 = r.stats;
@@ -93,8 +96,8 @@ ViewCellResult view_cell_pvs(RegionCullingMethod& method, const Scene& scene, co
     out.stats.occluders_applied += s2.occluders_applied;
     out.stats.items_skipped += s2.items_skipped;
   }
-  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b)
-    if (known[b]) out.pvs.push_back(scene.buildings[b].id);
+  for (std::uint32_t b = 0; b < scene_.buildings.size(); ++b)
+    if (known[b]) out.pvs.push_back(scene_.buildings[b].id);
   std::sort(out.pvs.begin(), out.pvs.end());
   out.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;

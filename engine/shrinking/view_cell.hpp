@@ -57,10 +57,22 @@ struct ViewCellResult {
   std::vector<std::size_t> sample_pvs_size;
 };
 
-// `camera` gives the eyes' clip planes (its position and orientation are ignored: each sample's
-// camera is omnidirectional at the sample, at the cell's eye height). With `carry`, decisions
-// carry from sample to sample where the method supports it (RegionCullingMethod::carries_known).
-ViewCellResult view_cell_pvs(RegionCullingMethod& method, const Scene& scene, const ViewCell& cell, double epsilon,
-                             CellSampling sampling, bool carry, const Camera& camera = {});
+// One region method's view-cell PVSs over one scene. The union is kept by scene index (what
+// cull_region_carrying reads), so building ids are indexed once here, not per cell.
+class ViewCellPvs {
+ public:
+  ViewCellPvs(RegionCullingMethod& method, const Scene& scene);
+  // `camera` gives the eyes' clip planes (its position and orientation are ignored: each
+  // sample's camera is omnidirectional at the sample, at the cell's eye height). With `carry`,
+  // decisions carry from sample to sample where the method supports it (carries_known).
+  ViewCellResult compute(const ViewCell& cell, double epsilon, CellSampling sampling, bool carry,
+                         const Camera& camera = {});
+
+ private:
+  RegionCullingMethod& method_;
+  const Scene& scene_;
+  std::vector<std::pair<ObjectId, std::uint32_t>> index_of_;  // (id, scene index), sorted by id
+  std::vector<char> known_;                                   // the union so far, by scene index
+};
 
 }  // namespace cullcheck

@@ -167,12 +167,13 @@ void BM_ViewCell(benchmark::State& state, const std::string& method_name) {
   static const Scene scene = generators::make_city("default", 1, nlohmann::json::object());
   static const std::vector<generators::NavigableRegion> cells = *generators::street_cells_of(scene);
   auto method = make_region_method(method_name, scene);
+  ViewCellPvs cells_pvs(*method, scene);
   const bool carry = state.range(0) != 0;
   std::size_t next = 0;
   double pvs = 0, cells_done = 0;
   for (auto _ : state) {
     const ViewCell cell{cells[(next++ * 37) % cells.size()].ring, 1.7};
-    const ViewCellResult r = view_cell_pvs(*method, scene, cell, 1.4142135623730951, CellSampling::boundary, carry);
+    const ViewCellResult r = cells_pvs.compute(cell, 1.4142135623730951, CellSampling::boundary, carry);
     pvs += static_cast<double>(r.pvs.size());
     ++cells_done;
   }
