@@ -34,6 +34,13 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
   throw unknown("method", name, method_names());
 }
 
+void RegionCullingMethod::set_passive_targets(const Scene& /*targets*/) {
+  throw std::invalid_argument("region method '" + name() +
+                              "' cannot test passive targets (navigable regions); use one built on the shrinking "
+                              "sweep: shrink_former, shrink_adjustable_thesis, shrink_adjustable_corrected, "
+                              "shrink_minkowski");
+}
+
 std::vector<std::string> region_method_names() {
   return {"shrink_former", "shrink_adjustable_thesis", "shrink_adjustable_conservative", "shrink_minkowski",
           "shrink_adjustable_corrected"};

@@ -29,6 +29,9 @@ struct CullStatistics {
 struct CullResult {
   std::vector<ObjectId> pvs;  // sorted ascending, no duplicates
   CullStatistics stats;
+  // Region methods with passive targets set (RegionCullingMethod::set_passive_targets): the ids
+  // of the targets not hidden, sorted. Their tests are counted in `stats` too.
+  std::vector<ObjectId> passive;
 };
 
 class CullingMethod {
@@ -77,11 +80,19 @@ class RegionCullingMethod {
   // `known[i]` (scene building index i) marks a building already in that union: a sweep-based
   // method accepts it without its horizon tests and casts its shadows, which leaves the union
   // unchanged (horizon_sweep.hpp) and saves the tests. The default ignores `known`.
-  virtual CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& /*known*/) {
+  // `known_passive[i]` does the same for passive target i (accepted untested).
+  virtual CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& /*known*/,
+                                          const std::vector<char>* /*known_passive*/ = nullptr) {
     return cull_region(region);
   }
   // Whether cull_region_carrying uses `known` (reports say where carrying saves nothing).
   virtual bool carries_known() const { return false; }
+  // Passive targets (engine/shrinking/passive_targets.hpp; the VbAoI graph's nodes): prisms
+  // tested like buildings that hide nothing. Once set (ids must be their indices), every query
+  // also fills CullResult::passive. The default throws std::invalid_argument naming the method;
+  // supports_passive_targets says beforehand.
+  virtual bool supports_passive_targets() const { return false; }
+  virtual void set_passive_targets(const Scene& targets);
 };
 
 // Names accepted by make_method, in report order.

@@ -13,17 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "core/navigable_region.hpp"
 #include "core/scene.hpp"
 #include "generators/manhattan_layout.hpp"
 
 namespace cullcheck::generators {
 
-struct NavigableRegion {
-  std::uint32_t id = 0;
-  std::string kind;              // "crossing", "street", "plaza"
-  std::vector<Vec2> ring;        // convex, counter-clockwise
-  std::vector<std::uint32_t> neighbours;  // sorted ids of the cells sharing an edge
-};
+using cullcheck::NavigableRegion;
 
 std::vector<NavigableRegion> street_cells(const ManhattanLayout& layout);
 // The street cells of a scene made by a Manhattan-family generator (from its provenance);

@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -187,6 +188,42 @@ RayOracle::Replay RayOracle::replay(const WitnessRay& ray, const Camera& camera)
   out.hit = im.mesh.owner_id[hit.triangle];
   out.t_hit = im.exact_t(ray.origin, ray.direction, hit);
   out.in_view_volume = ViewVolume(camera).contains(ray.origin + ray.direction * out.t_hit);
+  return out;
+}
+
+bool RayOracle::line_of_sight(Vec3 a, Vec3 b) const {
+  const Impl& im = *impl_;
+  const Vec3 o = a - im.mesh.origin, d = b - a;
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(o.x), ray.org_y = static_cast<float>(o.y), ray.org_z = static_cast<float>(o.z);
+  ray.dir_x = static_cast<float>(d.x), ray.dir_y = static_cast<float>(d.y), ray.dir_z = static_cast<float>(d.z);
+  ray.tnear = 0.0f;
+  ray.tfar = 1.0f;  // the direction spans the segment
+  ray.mask = 0xFFFFFFFFu;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1(im.rtc_scene, &context, &ray);
+  return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> RayOracle::mutually_visible(const std::vector<Vec3>& eyes,
+                                                                                 int threads) const {
+  const auto n = static_cast<std::uint32_t>(eyes.size());
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(n)));
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(static_cast<std::size_t>(threads));
+  // Row i has n - 1 - i pairs: rows are dealt round-robin so the threads' shares are even.
+  auto worker = [&](int t) {
+    for (std::uint32_t i = static_cast<std::uint32_t>(t); i < n; i += static_cast<std::uint32_t>(threads))
+      for (std::uint32_t j = i + 1; j < n; ++j)
+        if (line_of_sight(eyes[i], eyes[j])) found[static_cast<std::size_t>(t)].emplace_back(i, j);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+  worker(0);
+  for (std::thread& th : pool) th.join();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  std::sort(out.begin(), out.end());
   return out;
 }
 

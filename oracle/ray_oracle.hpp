@@ -20,6 +20,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/camera.hpp"
@@ -99,6 +100,14 @@ class RayOracle {
   // bookkeeping), repeating the log until at least `min_seconds` have passed, on `threads`
   // threads. Gives the Embree-only rate to print next to OracleResult::rays_per_second().
   double bare_embree_rays_per_second(const RayLog& log, int threads = 1, double min_seconds = 0.2) const;
+
+  // Whether the segment from `a` to `b` is clear of every building (one Embree occlusion ray over
+  // exactly that segment; exact up to single precision, so only a segment grazing a wall or roof
+  // edge is in doubt). The VbAoI channel-grouping property's line of sight between avatar eyes.
+  bool line_of_sight(Vec3 a, Vec3 b) const;
+  // Every pair (i, j), i < j, of `eyes` with a clear line of sight, sorted; on `threads` threads.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> mutually_visible(const std::vector<Vec3>& eyes,
+                                                                        int threads = 1) const;
 
   const TriangleMesh& mesh() const;
   const Scene& scene() const;

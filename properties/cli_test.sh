@@ -79,7 +79,7 @@ expect_exit 0 "cell from a polygon, checked from inside" "$cc" cell --generator 
   --from '{"position":[2,3,1.7],"hfov":6.283185307179586}'
 grep -q '"missed":\[\]' "$work/out" && pass || fail "cell: a conservative cell PVS misses a building from inside"
 expect_exit 2 "cell out of range" "$cc" cell --generator manhattan --params '{"blocks_x":2,"blocks_y":2}' --cell 999
-expect_error_names "cell out of range" "street cells"
+expect_error_names "cell out of range" "navigable regions"
 expect_exit 2 "clockwise cell" "$cc" cell --generator manhattan --ring '[[0,0],[0,5],[5,5],[5,0]]'
 expect_error_names "clockwise cell" "counter-clockwise"
 expect_exit 2 "cell sampling" "$cc" cell --generator manhattan --cell 1 --sampling everywhere

@@ -9,15 +9,19 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
 
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
 #include "engine/method.hpp"
 #include "engine/shrinking/view_cell.hpp"
-#include "generators/street_cells.hpp"
+#include "engine/vbaoi/navigation_graph.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
+#include "generators/navigable_regions.hpp"
 #include "oracle/oracle.hpp"
+#include "oracle/ray_oracle.hpp"
 #include "reports/claims.hpp"
 #include "reports/delta_claims.hpp"
 #include "reports/shrinking_claims.hpp"
@@ -26,6 +30,7 @@
 #include "reports/table_4_1.hpp"
 #include "reports/scaling.hpp"
 #include "reports/report.hpp"
+#include "reports/vbaoi.hpp"
 #include "reports/verification.hpp"
 
 namespace cc = cullcheck;
@@ -180,6 +185,70 @@ nlohmann::json pvs_json(const cc::CullResult& r) {
           {"cull_ms", r.stats.cull_ms}};
 }
 
+// VbAoI (issue 5): the graph's from-region method and the simulation's knobs.
+struct VbaoiFlags {
+  cc::VbaoiOptions options;
+  std::string sampling = "boundary";
+  // `prefix` keeps the names apart where other flags live (report: "vbaoi-").
+  void add(CLI::App& app, const std::vector<std::uint32_t>& default_clients, const std::string& prefix = "") {
+    const auto name = [&](const char* flag) { return "--" + prefix + flag; };
+    options.client_counts = default_clients;
+    // Results do not depend on the thread counts (nodes and rays are merged in order).
+    options.graph.threads = std::max(1u, std::thread::hardware_concurrency());
+    options.oracle_threads = static_cast<int>(options.graph.threads);
+    app.add_option(name("cell-size"), options.regions.cell_size,
+                   "Free-space cells (scenes without street cells): side of the grid no cell reaches across, metres")
+        ->capture_default_str()
+        ->check(CLI::Range(0.1, 1e5));
+    app.add_option(name("cell-margin"), options.regions.margin,
+                   "Free-space cells: open ground kept around the scene's bounds, metres")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e5));
+    app.add_option(name("graph-method"), options.graph.method,
+                   "From-region method for each node's PVSo and PVSn (one that tests passive targets)")
+        ->capture_default_str();
+    app.add_option(name("epsilon"), options.graph.epsilon, "ε (m) of the view-cell samples' discs")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-3, 1e3));
+    app.add_option(name("eye-height"), options.graph.eye_height, "Eye height (m) of every client and of the view cells' eyes")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-3, 1e3));
+    app.add_option(name("graph-sampling"), sampling, "View-cell sampling: boundary or tiled")->capture_default_str();
+    app.add_option(name("graph-threads"), options.graph.threads, "Threads computing the graph's nodes")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 256u));
+    app.add_option(name("clients"), options.client_counts, "Client counts, comma-separated (one simulation each)")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 100000u));
+    auto& s = options.simulation;
+    app.add_option(name("sim-seed"), s.seed, "Simulation seed (walks, join times, network draws)")->capture_default_str();
+    app.add_option(name("duration"), s.duration, "Simulated seconds")->capture_default_str();
+    app.add_option(name("tick"), s.tick, "Seconds between pose updates")->capture_default_str();
+    app.add_option(name("latency"), s.latency, "One-way latency (s) client <-> server")->capture_default_str();
+    app.add_option(name("jitter"), s.jitter, "Extra latency, uniform in [0, jitter) seconds")->capture_default_str();
+    app.add_option(name("loss"), s.loss, "Probability that a message is lost")->capture_default_str();
+    app.add_option(name("retry-timeout"), s.retry_timeout, "Seconds before an unanswered control message is resent")
+        ->capture_default_str();
+    app.add_option(name("join-window"), s.join_window, "Clients join at seeded times in [0, join window) seconds")
+        ->capture_default_str();
+    app.add_option(name("speed-min"), s.speed_min, "Slowest walking speed, m/s")->capture_default_str();
+    app.add_option(name("speed-max"), s.speed_max, "Fastest walking speed, m/s")->capture_default_str();
+    app.add_option(name("circular-radii"), s.circular_radii, "Radii (m) of the circular-AoI baselines, comma-separated")
+        ->delimiter(',')
+        ->capture_default_str();
+    app.add_option(name("check-stride"), s.check_stride, "Check line of sight at every n-th tick")->capture_default_str();
+    app.add_option(name("oracle-threads"), options.oracle_threads, "Threads casting line-of-sight rays")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 256));
+  }
+  const cc::VbaoiOptions& resolved() {
+    options.graph.sampling = cc::parse_cell_sampling(sampling);
+    cc::vbaoi::validate(options.simulation);
+    return options;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -255,9 +324,11 @@ int main(int argc, char** argv) {
   std::string cell_method = "shrink_adjustable_conservative", cell_ring, cell_sampling = "boundary", cell_from;
   std::int64_t cell_id = -1;
   double cell_epsilon = std::sqrt(2.0), cell_eye_height = 1.7;
-  bool cell_no_carry = false;
+  bool cell_no_carry = false, cell_nodes = false;
+  std::vector<double> cell_to;
   cell->add_option("--method", cell_method, "From-region method for each sample's disc")->capture_default_str();
-  cell->add_option("--cell", cell_id, "Street cell id (Manhattan-family scenes; see generators/street_cells.hpp)");
+  cell->add_option("--cell", cell_id, "Navigable region id: a street cell of a Manhattan-family city, else a free-space cell "
+                                      "(generators/navigable_regions.hpp)");
   cell->add_option("--ring", cell_ring, "Or the cell as a convex counter-clockwise polygon, JSON [[x,y],...]");
   cell->add_option("--epsilon", cell_epsilon, "Disc radius ε (m); samples lie at most 2ε apart")
       ->capture_default_str()
@@ -266,6 +337,26 @@ int main(int argc, char** argv) {
   cell->add_option("--eye-height", cell_eye_height, "Eye height (m) of every eye in the cell")->capture_default_str();
   cell->add_flag("--no-carry", cell_no_carry, "Test every building at every sample (no decisions carried between samples)");
   cell->add_option("--from", cell_from, "A viewpoint (camera JSON) to check the cell's PVS from with the oracle");
+  cell->add_flag("--nodes", cell_nodes,
+                 "Also the cell's PVSn (VbAoI, thesis ch. 5.1): the scene's navigable regions, extruded to eye height, "
+                 "that the method does not hide (raw: before the graph makes PVSn symmetric)");
+  cell->add_option("--to", cell_to, "With --nodes and --from: an avatar's eye X,Y (at eye height); checks the line of "
+                                    "sight from --from's eye to it and that its region is in the PVSn")
+      ->delimiter(',')
+      ->expected(2);
+
+  // vbaoi ------------------------------------------------------------------------------------
+  CLI::App* vbaoi = app.add_subcommand(
+      "vbaoi", "VbAoI (thesis ch. 5): build the navigable-region graph (PVSo, PVSn, SNs), simulate clients with VbAoI, "
+               "broadcast and circular AoI, check channel grouping against the oracle; exit 1 on a violation");
+  SceneFlags vbaoi_scene;
+  vbaoi_scene.add(*vbaoi);
+  MethodFlags vbaoi_tuning;
+  vbaoi_tuning.add(*vbaoi);
+  VbaoiFlags vbaoi_flags;
+  vbaoi_flags.add(*vbaoi, {10, 100});
+  std::string vbaoi_output;
+  vbaoi->add_option("--output,-o", vbaoi_output, "Also write the section as JSON to this file");
 
   // report -----------------------------------------------------------------------------------
   CLI::App* report = app.add_subcommand("report", "The main job: every method and the oracle along a path, the claims ledger, report.json");
@@ -322,6 +413,17 @@ int main(int argc, char** argv) {
   report->add_option("--view-cell-oracle-cells", view_cell_options.oracle_cells, "Street cells held to the oracle")
       ->capture_default_str();
   report->add_option("--view-cell-sampling", view_cell_sampling, "Comma-separated: boundary, tiled")->capture_default_str();
+  bool vbaoi_section = false;
+  cc::SceneSource vbaoi_city{"manhattan", 1, R"({"blocks_x":41,"blocks_y":41})", ""};
+  VbaoiFlags report_vbaoi;
+  report->add_flag("--vbaoi", vbaoi_section,
+                   "Also VbAoI (thesis ch. 5) on its own city (--vbaoi-generator/-seed/-params; default a 41 x 41-block "
+                   "Manhattan grid of 10,086 buildings): the navigable-region graph, simulations of 10, 100 and 1,000 "
+                   "clients against broadcast, neighbours-only and circular AoI, into report.json's \"vbaoi\"");
+  report->add_option("--vbaoi-generator", vbaoi_city.generator, "Generator of the VbAoI city")->capture_default_str();
+  report->add_option("--vbaoi-seed", vbaoi_city.seed, "Seed of the VbAoI city")->capture_default_str();
+  report->add_option("--vbaoi-params", vbaoi_city.parameters_json, "Parameters (JSON) of the VbAoI city")->capture_default_str();
+  report_vbaoi.add(*report, {10, 100, 1000}, "vbaoi-");
   report->add_option("--benchmark-json", benchmark_json,
                      "Fold this Google Benchmark JSON output (bench_culling --benchmark_format=json) into the report");
 
@@ -388,12 +490,11 @@ int main(int argc, char** argv) {
       if ((cell_id >= 0) == !cell_ring.empty())
         throw cc::InputError("cell", "--cell/--ring", "give exactly one of --cell ID and --ring POLYGON");
       if (cell_id >= 0) {
-        const auto cells = cc::generators::street_cells_of(scene);
-        if (!cells) throw cc::InputError("cell", "--cell", "the scene's generator has no street cells; give --ring instead");
-        if (static_cast<std::size_t>(cell_id) >= cells->size())
-          throw cc::InputError("cell", "--cell", "is " + std::to_string(cell_id) + ", the city has " +
-                                                     std::to_string(cells->size()) + " street cells");
-        view_cell.ring = (*cells)[static_cast<std::size_t>(cell_id)].ring;
+        const auto cells = cc::generators::navigable_regions(scene);
+        if (static_cast<std::size_t>(cell_id) >= cells.size())
+          throw cc::InputError("cell", "--cell", "is " + std::to_string(cell_id) + ", the scene has " +
+                                                     std::to_string(cells.size()) + " navigable regions (street cells or free-space cells)");
+        view_cell.ring = cells[static_cast<std::size_t>(cell_id)].ring;
       } else {
         const nlohmann::json ring = PathFlags::parse_json(cell_ring, "ring");
         if (!ring.is_array()) throw cc::InputError("cell", "--ring", "must be a JSON array of [x, y] pairs");
@@ -405,15 +506,48 @@ int main(int argc, char** argv) {
       }
       auto method = cc::make_region_method(cell_method, scene, cell_tuning.options);
       const cc::CellSampling sampling = cc::parse_cell_sampling(cell_sampling);
-      const cc::ViewCellResult r = cc::ViewCellPvs(*method, scene).compute(view_cell, cell_epsilon, sampling, !cell_no_carry);
+      if (!cell_to.empty() && (!cell_nodes || cell_from.empty()))
+        throw cc::InputError("cell", "--to", "needs --nodes and --from");
+      std::vector<cc::NavigableRegion> regions;
+      if (cell_nodes) {
+        regions = cc::generators::navigable_regions(scene);
+        method->set_passive_targets(cc::navigable_region_targets(regions, cell_eye_height));
+      }
+      const cc::ViewCellResult r =
+          cc::ViewCellPvs(*method, scene, regions.size()).compute(view_cell, cell_epsilon, sampling, !cell_no_carry);
       nlohmann::json out = {{"method", cell_method},      {"epsilon", cell_epsilon},
                             {"sampling", cell_sampling},  {"samples", r.samples},
                             {"pvs", r.pvs},               {"pvs_size", r.pvs.size()},
                             {"cull_ms", r.stats.cull_ms}, {"buildings_tested", r.stats.buildings_tested},
                             {"accepted_untested", r.stats.items_skipped}};
-      const int exit_code = check_from(scene, cell_from, cell_oracle_sampling.sampling, r.pvs, *method, out);
+      int exit_code = check_from(scene, cell_from, cell_oracle_sampling.sampling, r.pvs, *method, out);
+      if (cell_nodes) {
+        out["pvs_n"] = r.passive;
+        out["pvs_n_size"] = r.passive.size();
+      }
+      if (!cell_to.empty()) {
+        const cc::Vec3 eye = cc::camera_from_json_text(cell_from, "from").position;
+        const cc::Vec3 avatar{cell_to[0], cell_to[1], cell_eye_height};
+        const std::int64_t node = cc::locate_region(regions, {avatar.x, avatar.y});
+        const bool sight = cc::oracle::RayOracle(scene).line_of_sight(eye, avatar);
+        const bool listed = node >= 0 && std::binary_search(r.passive.begin(), r.passive.end(), static_cast<cc::ObjectId>(node));
+        out["to"] = {{"node", node}, {"line_of_sight", sight}, {"node_in_pvs_n", listed}};
+        if (sight && node >= 0 && !listed && method->claims_conservative()) exit_code = kExitGateFailed;
+      }
       std::cout << out.dump() << "\n";
       return exit_code;
+    }
+    if (*vbaoi) {
+      const cc::Scene scene = vbaoi_scene.source.load();
+      cc::VbaoiOptions options = vbaoi_flags.resolved();
+      options.graph.method_options = vbaoi_tuning.options;
+      const nlohmann::json section = cc::vbaoi_report(scene, vbaoi_scene.source, options);
+      std::cout << cc::vbaoi_table(section);
+      if (!vbaoi_output.empty()) cc::write_text_file_atomically(vbaoi_output, section.dump(2) + "\n");
+      const std::size_t violations = cc::vbaoi_gate_violations(section);
+      if (violations > 0)
+        for (const auto& run : section["runs"]) std::cout << "replay: " << run["replay"].get<std::string>() << "\n";
+      return violations == 0 ? 0 : kExitGateFailed;
     }
     if (*verify) {
       const cc::Scene scene = verify_scene.source.load();
@@ -451,6 +585,12 @@ int main(int argc, char** argv) {
           view_cell_options.samplings.push_back(cc::parse_cell_sampling(view_cell_sampling.substr(start, comma - start)));
           start = comma + 1;
         }
+      }
+      std::optional<cc::Scene> vbaoi_scene;  // bad VbAoI input fails before the long run too
+      if (vbaoi_section) {
+        report_vbaoi.resolved();
+        report_vbaoi.options.graph.method_options = report_tuning.options;
+        vbaoi_scene = vbaoi_city.load();
       }
       const cc::CameraPath path = report_path.load(scene);
       cc::VerificationOptions options;
@@ -504,6 +644,15 @@ int main(int argc, char** argv) {
         for (const auto& r : document["view_cells"]["runs"])
           if (r["claims_conservative"].get<bool>()) section_violations += r["violations"].get<std::size_t>();
       }
+      if (vbaoi_scene) {
+        document["vbaoi"] = cc::vbaoi_report(*vbaoi_scene, vbaoi_city, report_vbaoi.options);
+        std::cout << cc::vbaoi_table(document["vbaoi"]);
+        section_violations += cc::vbaoi_gate_violations(document["vbaoi"]);
+        for (cc::ClaimCheck& c : cc::vbaoi_claims(document["vbaoi"])) {
+          document["claims"].push_back(cc::to_json(c));
+          in.claims.push_back(std::move(c));
+        }
+      }
       if (!scaling_grids.empty()) {
         cc::ScalingOptions scaling;
         scaling.grids = scaling_grids;
@@ -511,6 +660,9 @@ int main(int argc, char** argv) {
         document["scaling"] = cc::run_scaling(scaling);
         std::cout << cc::scaling_table(document["scaling"]);
       }
+      // The gate in the document says what the exit code says: sections' violations count too.
+      document["gate"]["section_violations"] = section_violations;
+      document["gate"]["passed"] = cc::conservative_violations(v) == 0 && section_violations == 0;
       if (!benchmark_json.empty())
         document["benchmarks"] = PathFlags::parse_json(cc::read_text_file(benchmark_json), "benchmark-json");
       cc::write_text_file_atomically(report_output, document.dump(2) + "\n");

@@ -44,14 +44,29 @@ double shadow_slope(ShadowRule rule, const ConvexVerticalPrism& prism, Vec3 eye,
 // distance is below this may be partly clipped and is not used as an occluder.
 double unclipped_distance(const Camera& camera);
 
+// One CVP's shadow: merged into H once the sweep has passed `farthest` (the CVP's farthest plan
+// distance, or later where a method delays it).
+struct Shadow {
+  double farthest;
+  AzimuthSpan span;
+  double slope;
+};
+
 // Shadows waiting until the sweep passes their CVP's farthest point; merged in that order.
+// With record_into, every shadow pushed is also appended to a log, so that a second sweep over
+// other objects (passive targets, engine/shrinking/passive_targets.hpp) can meet the same
+// horizon at the same distances by pushing the log again.
 class ShadowQueue {
  public:
   void clear() {
     queue_ = {};
     order_ = 0;
   }
-  void push(double farthest, const AzimuthSpan& span, double slope) { queue_.push({farthest, span, slope, order_++}); }
+  void record_into(std::vector<Shadow>* log) { log_ = log; }
+  void push(double farthest, const AzimuthSpan& span, double slope) {
+    queue_.push({farthest, span, slope, order_++});
+    if (log_) log_->push_back({farthest, span, slope});
+  }
   // Merges every shadow whose farthest point is nearer than `distance` (strictly) into `horizon`
   // and, when given, into `also` (ΔH raises H(t+1) and its mask together).
   void merge_nearer_than(double distance, OcclusionHorizon& horizon, CullStatistics& stats,
@@ -77,6 +92,7 @@ class ShadowQueue {
   };
   std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> queue_;
   std::uint64_t order_ = 0;
+  std::vector<Shadow>* log_ = nullptr;
 };
 
 // One entry of the front-to-back sweep: a quadtree cell or a building, keyed by its nearest plan
@@ -142,10 +158,12 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
 //    and casts its shadows. That changes nothing else: had it been hidden, each of its CVPs lay
 //    below H over its span, and a shadow is never above the CVP's own highest slope over a span
 //    within the CVP's (shrunk shadows even less), so merging it raises no bin.
+//  - `pending`: the queue shadows wait in. It may arrive holding shadows already (a passive-
+//    target sweep replays a building sweep's shadows); whatever is left is merged at the end.
 template <class Meets, class CastShadows, class Known>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
                    bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, const Known& known,
-                   CullResult& result) {
+                   ShadowQueue& pending, CullResult& result) {
   CullStatistics& stats = result.stats;
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
@@ -156,7 +174,6 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
   horizon.take_node_visits();
 
   std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
-  ShadowQueue pending;
   std::vector<std::optional<ConvexSpan>> spans;
   const auto& cells = quadtree.cells();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
@@ -196,8 +213,9 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
 template <class Meets, class CastShadows>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
                    bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, CullResult& result) {
+  ShadowQueue pending;
   sweep_horizon(scene, quadtree, horizon, camera, restrict_to_coverage, meets, cast,
-                [](std::uint32_t) { return false; }, result);
+                [](std::uint32_t) { return false; }, pending, result);
 }
 
 // Plain OH(OS) at one camera with `rule`'s shadows.

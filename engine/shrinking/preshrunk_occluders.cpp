@@ -5,9 +5,10 @@
 namespace cullcheck {
 
 PreshrunkOccluders::PreshrunkOccluders(const Scene& scene, const MethodOptions& options)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+    : scene_(scene), options_(options), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
 
-CullResult PreshrunkOccluders::sweep(const ViewRegion& region, const std::vector<char>* known) {
+CullResult PreshrunkOccluders::sweep(const ViewRegion& region, const std::vector<char>* known,
+                                     const std::vector<char>* known_passive) {
   if (!shrunk_radius_ || *shrunk_radius_ != region.radius) {
     begin_shrinking(region.radius);
     shrunk_.assign(scene_.buildings.size(), {});
@@ -19,7 +20,7 @@ CullResult PreshrunkOccluders::sweep(const ViewRegion& region, const std::vector
                           const std::vector<std::optional<ConvexSpan>>&) {
                         queue_shrunk_shadows(pending, shrunk_[index], eye, distance, unclipped);
                       },
-                      known);
+                      known, passive_ ? &*passive_ : nullptr, known_passive);
 }
 
 }  // namespace cullcheck

@@ -13,17 +13,21 @@
 
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/method.hpp"
+#include "engine/shrinking/passive_targets.hpp"
 #include "engine/spatial/quadtree.hpp"
 
 namespace cullcheck {
 
 class PreshrunkOccluders : public RegionCullingMethod {
  public:
-  CullResult cull_region(const ViewRegion& region) override { return sweep(region, nullptr); }
-  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override {
-    return sweep(region, &known);
+  CullResult cull_region(const ViewRegion& region) override { return sweep(region, nullptr, nullptr); }
+  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known,
+                                  const std::vector<char>* known_passive = nullptr) override {
+    return sweep(region, &known, known_passive);
   }
   bool carries_known() const override { return true; }
+  bool supports_passive_targets() const override { return true; }
+  void set_passive_targets(const Scene& targets) override { passive_.emplace(targets, options_); }
 
  protected:
   PreshrunkOccluders(const Scene& scene, const MethodOptions& options);
@@ -36,12 +40,14 @@ class PreshrunkOccluders : public RegionCullingMethod {
   const Scene& scene_;
 
  private:
-  CullResult sweep(const ViewRegion& region, const std::vector<char>* known);
+  CullResult sweep(const ViewRegion& region, const std::vector<char>* known, const std::vector<char>* known_passive);
 
+  MethodOptions options_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_;
   std::optional<double> shrunk_radius_;
   std::vector<std::vector<ConvexVerticalPrism>> shrunk_;  // per building: its shrunk CVPs
+  std::optional<PassiveTargets> passive_;
 };
 
 }  // namespace cullcheck

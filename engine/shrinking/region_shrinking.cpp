@@ -82,13 +82,19 @@ std::optional<ShrunkShadow> corrected_shrunk_shadow(const ConvexVerticalPrism& p
 }  // namespace
 
 PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options, bool corrected)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), horizon_(options.horizon_bins), corrected_(corrected) {}
+    : scene_(scene),
+      options_(options),
+      quadtree_(scene, options.quadtree_leaf_size),
+      horizon_(options.horizon_bins),
+      corrected_(corrected) {}
 
-CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr); }
-CullResult PublishedShadowShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) {
-  return sweep(region, &known);
+CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr, nullptr); }
+CullResult PublishedShadowShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known,
+                                                          const std::vector<char>* known_passive) {
+  return sweep(region, &known, known_passive);
 }
-CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::vector<char>* known) {
+CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::vector<char>* known,
+                                           const std::vector<char>* known_passive) {
   return sweep_region(scene_, quadtree_, horizon_, region,
                       [&](ShadowQueue& pending, std::uint32_t index, Vec3 eye, double distance, double unclipped,
                           const std::vector<std::optional<ConvexSpan>>& spans) {
@@ -106,7 +112,7 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                           }
                         }
                       },
-                      known);
+                      known, passive_ ? &*passive_ : nullptr, known_passive);
 }
 
 // Wonka et al.'s shrinking as ch. 4.1.1 describes it: each CVP's footprint moved inward by ε

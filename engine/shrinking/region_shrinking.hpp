@@ -34,6 +34,7 @@
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/method.hpp"
+#include "engine/shrinking/passive_targets.hpp"
 #include "engine/shrinking/preshrunk_occluders.hpp"
 #include "engine/spatial/quadtree.hpp"
 
@@ -55,16 +56,21 @@ class PublishedShadowShrinking final : public RegionCullingMethod {
   std::string name() const override { return corrected_ ? "shrink_adjustable_corrected" : "shrink_adjustable_thesis"; }
   bool claims_conservative() const override { return corrected_; }
   CullResult cull_region(const ViewRegion& region) override;
-  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known) override;
+  CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& known,
+                                  const std::vector<char>* known_passive = nullptr) override;
   bool carries_known() const override { return true; }
+  bool supports_passive_targets() const override { return true; }
+  void set_passive_targets(const Scene& targets) override { passive_.emplace(targets, options_); }
 
  private:
-  CullResult sweep(const ViewRegion& region, const std::vector<char>* known);
+  CullResult sweep(const ViewRegion& region, const std::vector<char>* known, const std::vector<char>* known_passive);
 
   const Scene& scene_;
+  MethodOptions options_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_;
   bool corrected_;
+  std::optional<PassiveTargets> passive_;
 };
 
 class FootprintShrinking final : public PreshrunkOccluders {

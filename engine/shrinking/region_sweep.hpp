@@ -13,21 +13,29 @@
 
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/horizon_sweep.hpp"
+#include "engine/shrinking/passive_targets.hpp"
 
 namespace cullcheck {
 
 // `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
 // cull_region_carrying): they are accepted untested and cast their shadows.
+// `passive`, when given, is swept after the buildings against the same shadows (passive_targets.hpp)
+// into result.passive; `known_passive` marks targets already held.
 template <class CastShadows>
 CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
-                        const CastShadows& cast, const std::vector<char>* known = nullptr) {
+                        const CastShadows& cast, const std::vector<char>* known = nullptr,
+                        PassiveTargets* passive = nullptr, const std::vector<char>* known_passive = nullptr) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
+  ShadowQueue pending;
+  std::vector<Shadow> log;
+  if (passive) pending.record_into(&log);
   sweep_horizon(
       scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
       [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); }, cast,
-      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, result);
+      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, pending, result);
   std::sort(result.pvs.begin(), result.pvs.end());
+  if (passive) result.passive = passive->visible(region, log, known_passive, result.stats);
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

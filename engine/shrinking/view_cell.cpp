@@ -63,7 +63,8 @@ std::vector<Vec2> cell_samples(const ViewCell& cell, double epsilon, CellSamplin
                                             : CircleTiling{epsilon}.centres_covering(cell.ring);
 }
 
-ViewCellPvs::ViewCellPvs(RegionCullingMethod& method, const Scene& scene) : method_(method), scene_(scene) {
+ViewCellPvs::ViewCellPvs(RegionCullingMethod& method, const Scene& scene, std::size_t passive_targets)
+    : method_(method), scene_(scene), passive_targets_(passive_targets) {
   for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of_.emplace_back(scene.buildings[b].id, b);
   std::sort(index_of_.begin(), index_of_.end());
 }
@@ -76,6 +77,7 @@ ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSa
   out.samples = samples.size();
   std::vector<char>& known = known_;
   known.assign(scene_.buildings.size(), 0);
+  known_passive_.assign(passive_targets_, 0);
   auto mark = [&](ObjectId id) {
     const auto it = std::lower_bound(index_of_.begin(), index_of_.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
     known[it->second] = 1;
@@ -86,9 +88,15 @@ ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSa
   for (const Vec2 s : samples) {
     eye.position = {s.x, s.y, cell.eye_height};
     const ViewRegion region{eye, epsilon, 0.0};
-    const CullResult r = carry ? method_.cull_region_carrying(region, known) : method_.cull_region(region);
+    const CullResult r = carry ? method_.cull_region_carrying(region, known, passive_targets_ ? &known_passive_ : nullptr) : method_.cull_region(region);
     out.sample_pvs_size.push_back(r.pvs.size());
     for (ObjectId id : r.pvs) mark(id);
+    for (ObjectId id : r.passive) {
+      if (id >= known_passive_.size())
+        throw std::logic_error("view cell: passive target " + std::to_string(id) + " beyond the " +
+                               std::to_string(passive_targets_) + " the view cell was told of");
+      known_passive_[id] = 1;
+    }
     const CullStatistics& s2 = r.stats;
     out.stats.cells_tested += s2.cells_tested;
     out.stats.buildings_tested += s2.buildings_tested;
@@ -99,6 +107,8 @@ ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSa
   for (std::uint32_t b = 0; b < scene_.buildings.size(); ++b)
     if (known[b]) out.pvs.push_back(scene_.buildings[b].id);
   std::sort(out.pvs.begin(), out.pvs.end());
+  for (std::uint32_t t = 0; t < known_passive_.size(); ++t)
+    if (known_passive_[t]) out.passive.push_back(t);
   out.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

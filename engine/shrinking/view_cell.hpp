@@ -55,13 +55,16 @@ struct ViewCellResult {
   std::size_t samples = 0;
   CullStatistics stats;             // summed over samples; cull_ms = wall time of the whole cell
   std::vector<std::size_t> sample_pvs_size;
+  std::vector<ObjectId> passive;    // sorted, the union of the samples' passive targets (if any)
 };
 
 // One region method's view-cell PVSs over one scene. The union is kept by scene index (what
 // cull_region_carrying reads), so building ids are indexed once here, not per cell.
 class ViewCellPvs {
  public:
-  ViewCellPvs(RegionCullingMethod& method, const Scene& scene);
+  // `passive_targets`: how many passive targets the method was given (set_passive_targets), so
+  // that their union carries from sample to sample too; 0 when it has none.
+  ViewCellPvs(RegionCullingMethod& method, const Scene& scene, std::size_t passive_targets = 0);
   // `camera` gives the eyes' clip planes (its position and orientation are ignored: each
   // sample's camera is omnidirectional at the sample, at the cell's eye height). With `carry`,
   // decisions carry from sample to sample where the method supports it (carries_known).
@@ -73,6 +76,8 @@ class ViewCellPvs {
   const Scene& scene_;
   std::vector<std::pair<ObjectId, std::uint32_t>> index_of_;  // (id, scene index), sorted by id
   std::vector<char> known_;                                   // the union so far, by scene index
+  std::size_t passive_targets_;
+  std::vector<char> known_passive_;                           // the passive union so far, by id
 };
 
 }  // namespace cullcheck

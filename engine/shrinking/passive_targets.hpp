@@ -1,0 +1,43 @@
+// Passive targets (thesis ch. 5.1: navigable regions are "passive occluders", seen but hiding
+// nothing): prisms a region method tests against its horizon like buildings, that cast no shadow.
+// The VbAoI graph (engine/vbaoi/) makes one per node, its cell extruded to the avatars' eye
+// height, so that a node is in another's PVSn when some eye of the one may see some avatar eye
+// of the other.
+//
+// How: the region's building sweep logs every shadow it queues (ShadowQueue::record_into); a
+// second sweep, over the targets' own quadtree, replays that log into its queue. Each target is
+// then tested against exactly the shadows whose (method-delayed) farthest point is nearer than the
+// target's nearest point: the H_<d that decides a building in horizon_sweep.hpp. So a target is
+// kept exactly when a building of its shape standing there would be, and the method's claim
+// (conservative over its ε-disc, or not) carries over to targets unchanged; hiding nothing, the
+// targets change no building's fate.
+#pragma once
+
+#include <vector>
+
+#include "core/scene.hpp"
+#include "engine/horizon/horizon_sweep.hpp"
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/method.hpp"
+#include "engine/spatial/quadtree.hpp"
+
+namespace cullcheck {
+
+class PassiveTargets {
+ public:
+  // `targets.buildings[i].id` must be i (throws std::invalid_argument otherwise).
+  PassiveTargets(Scene targets, const MethodOptions& options);
+
+  // The ids of the targets not hidden from `region` by `shadows` (a building sweep's log), sorted.
+  // Targets with known[i] set are accepted untested. Tests are added to `stats`.
+  std::vector<ObjectId> visible(const ViewRegion& region, const std::vector<Shadow>& shadows,
+                                const std::vector<char>* known, CullStatistics& stats);
+  std::size_t size() const { return scene_.buildings.size(); }
+
+ private:
+  Scene scene_;
+  Quadtree quadtree_;
+  OcclusionHorizon horizon_;
+};
+
+}  // namespace cullcheck

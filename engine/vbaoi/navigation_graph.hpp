@@ -1,0 +1,113 @@
+// VbAoI's navigable-region graph (thesis ch. 5.1, Fig. 5.1-5.2). VbAoI = visibility-based area of
+// interest: a client loads only what its region may see and exchanges updates only with clients
+// in regions that may see it.
+//
+// One node per navigable region (core/navigable_region.hpp), holding Fig. 5.2's data:
+//  - id: also the node's channel id (clients in the node publish on it);
+//  - coords: the region's convex ring (a client checks whether it is still inside);
+//  - PVSo: the buildings visible from some eye in the region, at the avatars' eye height, in
+//    every direction: the view-cell PVS (engine/shrinking/view_cell.hpp) of a from-region method;
+//  - PVSn: the nodes visible from the region: those whose region, extruded to eye height as a
+//    passive target (engine/shrinking/passive_targets.hpp), the same method does not hide from
+//    any of the view cell's samples. PVSn is the set of channels a client in the node listens to;
+//  - SNs: the neighbours (regions sharing an edge), whose data a client fetches before it may
+//    enter one.
+//
+// Mutual visibility (the thesis: "visibility in 360 degrees is mutual"), made explicit: if a
+// client at eye P in node A sees a client at eye Q in node B, the segment PQ is clear; so Q is a
+// point of B's passive target visible from P, and a method conservative over A keeps B in A's
+// PVSn; by the same argument from Q, A is in B's. Each direction is thus covered on its own, so
+// both clients listen to each other's channel. The graph also makes PVSn symmetric (B in PVSn(A)
+// iff A in PVSn(B), by union) so that a node's listeners are exactly its PVSn, and adds each
+// node itself and its neighbours (which any eye on the shared edge sees); how many entries each
+// rule added is counted, and for a conservative method both counts should be small.
+// The guarantee is only as good as the method's claim: with shrink_adjustable_thesis (refuted)
+// it is not one, and the channel-grouping property measures what that costs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/navigable_region.hpp"
+#include "core/scene.hpp"
+#include "engine/method.hpp"
+#include "engine/shrinking/view_cell.hpp"
+
+namespace cullcheck {
+
+using NodeId = std::uint32_t;
+
+struct NavigationNode {
+  NodeId id = 0;                    // = channel id = index in the graph
+  std::string kind;                 // the region's kind ("crossing", "street", "plaza", "free")
+  std::vector<Vec2> coords;         // convex, counter-clockwise
+  std::vector<ObjectId> pvs_o;      // sorted building ids
+  std::vector<NodeId> pvs_n;        // sorted node ids; holds the node itself and its neighbours
+  std::vector<NodeId> neighbours;   // SNs, sorted
+};
+
+struct NavigationGraphOptions {
+  std::string method = "shrink_former";  // a region method that supports passive targets
+  double epsilon = 1.4142135623730951;   // ε-disc radius of each view-cell sample (half their spacing)
+  double eye_height = 1.7;               // every eye and every avatar's eye, metres
+  CellSampling sampling = CellSampling::boundary;
+  bool carry = true;                     // view-cell decisions carried from sample to sample
+  unsigned threads = 1;                  // nodes computed in parallel, each thread its own method
+  MethodOptions method_options;
+};
+
+struct NavigationGraphStatistics {
+  std::vector<double> node_ms;           // wall time of each node's view cell
+  std::uint64_t samples = 0;             // view-cell samples over all nodes
+  std::uint64_t pvs_n_added_by_symmetry = 0;
+  std::uint64_t pvs_n_added_neighbours = 0;  // neighbours (or the node itself) the method did not list
+  double build_seconds = 0.0;            // wall time of the whole graph
+};
+
+struct NavigationGraph {
+  std::vector<NavigationNode> nodes;
+  NavigationGraphOptions options;
+  bool method_claims_conservative = false;
+  NavigationGraphStatistics stats;
+};
+
+// Each region extruded from the ground to `eye_height`, id = region id: the passive targets whose
+// visibility from a view cell puts a node in its PVSn (what another client's avatar may be).
+Scene navigable_region_targets(const std::vector<NavigableRegion>& regions, double eye_height);
+
+// One node's visibility as the method computes it, before the graph adds symmetry and
+// neighbours: the view-cell result of region `index` (PVSo in .pvs, the raw PVSn in .passive).
+// Each instance holds its own method (one per thread). Throws like build_navigation_graph.
+class NodeVisibility {
+ public:
+  NodeVisibility(const Scene& scene, const std::vector<NavigableRegion>& regions, const NavigationGraphOptions& options);
+  ~NodeVisibility();
+  ViewCellResult compute(std::size_t index);
+  bool method_claims_conservative() const;
+
+ private:
+  const std::vector<NavigableRegion>& regions_;
+  NavigationGraphOptions options_;
+  std::unique_ptr<RegionCullingMethod> method_;
+  std::unique_ptr<ViewCellPvs> cells_;
+};
+
+// Throws std::invalid_argument when the regions' ids are not their indices, a region is not a
+// valid view cell, a neighbour id is out of range, or the method is unknown or cannot test
+// passive targets.
+NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<NavigableRegion>& regions,
+                                       const NavigationGraphOptions& options = {});
+
+// The graph invariants (issue: neighbour symmetry, each PVSn holds its node and its neighbours,
+// channel ids unique), plus sorted lists and a symmetric PVSn. One line per problem; empty when
+// the graph is sound.
+std::vector<std::string> graph_invariant_violations(const NavigationGraph& graph);
+
+// The node a plan point lies in, looking first at `hint` and its neighbours (a walking client's
+// check, thesis Fig. 5.3), then at every node; -1 when none. Points on a shared edge belong to
+// the first node found. `tolerance` (metres) admits points that far outside a ring.
+std::int64_t locate_node(const NavigationGraph& graph, Vec2 point, std::int64_t hint = -1, double tolerance = 1e-9);
+
+}  // namespace cullcheck
