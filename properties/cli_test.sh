@@ -27,7 +27,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report region cell; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region cell vbaoi; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
@@ -84,9 +84,10 @@ expect_exit 2 "clockwise cell" "$cc" cell --generator manhattan --ring '[[0,0],[
 expect_error_names "clockwise cell" "counter-clockwise"
 expect_exit 2 "cell sampling" "$cc" cell --generator manhattan --cell 1 --sampling everywhere
 expect_error_names "cell sampling" "boundary, tiled"
-expect_exit 2 "view cells need street cells" "$cc" report --generator scatter --path-kind fly_through --path-params '{"frames":2}' \
-  --claim-scenes 1 --view-cells -o "$work/vc.json"
-expect_error_names "view cells need street cells" "has no street cells"
+expect_exit 0 "view cells of free-space cells" "$cc" report --generator scatter --params '{"count":5,"area_size":100}' \
+  --path-kind fly_through --path-params '{"frames":2}' --claim-scenes 1 --method frustum --region-method shrink_former \
+  --view-cells --view-cell-sampling boundary --view-cell-stride 7 --view-cell-oracle-cells 1 -o "$work/vc.json"
+grep -q '"view_cells"' "$work/vc.json" && pass || fail "view cells of a scatter city: no view_cells section"
 expect_exit 2 "view-cell sampling" "$cc" report --generator default --path-params '{"frames":2}' --claim-scenes 1 \
   --view-cells --view-cell-sampling boundary,nowhere -o "$work/vc.json"
 expect_error_names "view-cell sampling" "unknown view-cell sampling 'nowhere'"
@@ -108,6 +109,36 @@ if cmp -s "$work/a.json" "$work/keep.json"; then pass; else fail "a failed run c
 # An unwritable destination is an error naming the file, not a crash.
 expect_exit 2 "unwritable output" "$cc" generate --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' -o "$work/no/such/dir/x.json"
 expect_error_names "unwritable output" "cannot be opened for writing"
+
+# VbAoI: a street city and a free-space (irregular) city, the gate's zero, the baselines' misses,
+# one seed one run, bad input named before the graph is built.
+vb_city=(--generator manhattan --seed 3 --params '{"blocks_x":2,"blocks_y":2,"block_size":40,"street_width":10}')
+expect_exit 0 "vbaoi" "$cc" vbaoi "${vb_city[@]}" --clients 5,20 --duration 5 -o "$work/vb.json"
+grep -q "neighbours" "$work/out" && pass || fail "vbaoi: no neighbours baseline in the table"
+# Exit 0 is the gate's zero for a conservative graph method: no grouping violation, no missed update.
+grep -q '"invariant_violations": 0' "$work/vb.json" && pass || fail "vbaoi: graph invariants broken"
+[ "$(grep -c '"replay": "cullcheck vbaoi' "$work/vb.json")" -eq 2 ] && pass || fail "vbaoi: a run lacks its replay line"
+expect_exit 0 "vbaoi again" "$cc" vbaoi "${vb_city[@]}" --clients 5,20 --duration 5 -o "$work/vb2.json"
+# Timings (fields named *_ms* or *seconds*, and the objects under them) and thread counts aside.
+strip_timings() { sed -e '/_ms": {/,/}/d' "$1" | grep -v -e '_ms' -e 'seconds' -e '"threads"'; }
+if diff <(strip_timings "$work/vb.json") <(strip_timings "$work/vb2.json") >/dev/null; then pass; else fail "vbaoi: same seed, different section"; fi
+expect_exit 0 "vbaoi on free-space cells" "$cc" vbaoi --generator irregular --seed 2 --params '{"count":6,"area_size":120}' \
+  --clients 8 --duration 4 --loss 0.1
+expect_exit 0 "cell PVSn from an eye" "$cc" cell "${vb_city[@]}" --cell 0 --method shrink_former --nodes \
+  --from '{"position":[-45,-45,1.7],"hfov":6.283185307179586}' --to -45,40
+grep -q '"node_in_pvs_n":true' "$work/out" && pass || fail "cell --nodes: a street's far end is not in the crossing's PVSn"
+expect_exit 2 "vbaoi loss" "$cc" vbaoi "${vb_city[@]}" --loss 2
+expect_error_names "vbaoi loss" "loss"
+expect_exit 2 "vbaoi method" "$cc" vbaoi "${vb_city[@]}" --graph-method shrink_adjustable_conservative
+expect_error_names "vbaoi method" "cannot test passive targets"
+expect_exit 2 "vbaoi clients" "$cc" vbaoi "${vb_city[@]}" --clients 0
+expect_exit 2 "vbaoi retry" "$cc" vbaoi "${vb_city[@]}" --latency 0.5 --retry-timeout 0.2
+expect_error_names "vbaoi retry" "retry_timeout"
+expect_exit 2 "cell --to alone" "$cc" cell "${vb_city[@]}" --cell 0 --to 1,2
+expect_error_names "cell --to alone" "needs --nodes and --from"
+expect_exit 2 "report vbaoi city" "$cc" report --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' \
+  --path-params '{"frames":2}' --claim-scenes 1 --vbaoi --vbaoi-generator moon -o "$work/vb3.json"
+expect_error_names "report vbaoi city" "generator"
 
 # The CI gate: a refuted method's violation is reported with a replay line.
 printf '{"format":"cullcheck-scene","version":1,"buildings":[{"id":0,"height":10,"footprint":[[20,-20],[21,-20],[21,20],[20,20]]},{"id":1,"height":1,"footprint":[[40,-0.5],[41,-0.5],[41,0.5],[40,0.5]]}]}' >"$work/slab.json"

@@ -13,6 +13,7 @@
 #include "engine/shrinking/circle_tiling.hpp"
 #include "engine/shrinking/view_cell.hpp"
 #include "generators/rapidcheck_gens.hpp"
+#include "generators/navigable_regions.hpp"
 #include "generators/street_cells.hpp"
 #include "oracle/oracle.hpp"
 #include "properties/property_oracle.hpp"
@@ -174,7 +175,8 @@ std::vector<std::string> conservative_region_methods() {
 }
 
 rc::Gen<CellCase> cell_case() {
-  return rc::gen::map(rc::gen::tuple(rcgen::manhattan_spec(), rc::gen::inRange<std::size_t>(0, 1000),
+  return rc::gen::map(rc::gen::tuple(rc::gen::oneOf(rcgen::manhattan_spec(), rcgen::irregular_spec()),
+                                     rc::gen::inRange<std::size_t>(0, 1000),
                                      rc::gen::element(0.5, 1.4142135623730951, 4.0),
                                      rc::gen::elementOf(conservative_region_methods()),
                                      rc::gen::element(CellSampling::boundary, CellSampling::tiled)),
@@ -183,16 +185,16 @@ rc::Gen<CellCase> cell_case() {
                       });
 }
 
-// The oracle, from corners, edge midpoints and interior eyes of a street cell, sees nothing
+// The oracle, from corners, edge midpoints and interior eyes of a navigable region (a street cell,
+// or a free-space cell of an irregular city: generators/navigable_regions.hpp), sees nothing
 // outside the cell's PVS, whichever sampling (boundary: the published claim; tiled: by
 // construction) and conservative disc method is used.
 RC_GTEST_PROP(ViewCell, PvsHoldsFromEveryEyeInTheCell, ()) {
   const CellCase c = *cell_case();
   const Scene scene = generators::scene_of(c.spec);
-  const auto cells = generators::street_cells_of(scene);
-  RC_ASSERT(cells.has_value());
-  const std::size_t id = c.cell_pick % cells->size();
-  const ViewCell cell{(*cells)[id].ring, 1.7};
+  const std::vector<NavigableRegion> cells = generators::navigable_regions(scene);
+  const std::size_t id = c.cell_pick % cells.size();
+  const ViewCell cell{cells[id].ring, 1.7};
   auto method = make_region_method(c.method, scene);
   const std::vector<ObjectId> pvs = ViewCellPvs(*method, scene).compute(cell, c.epsilon, c.sampling, true).pvs;
   const oracle::Oracle truth(scene);
@@ -205,7 +207,7 @@ RC_GTEST_PROP(ViewCell, PvsHoldsFromEveryEyeInTheCell, ()) {
     for (ObjectId b : seen.visible)
       if (!std::binary_search(pvs.begin(), pvs.end(), b))
         RC_FAIL(c.method + " (" + std::string(cell_sampling_name(c.sampling)) + ") misses building " + std::to_string(b) +
-                " of street cell " + std::to_string(id) + ": " +
+                " of cell " + std::to_string(id) + ": " +
                 (seen.sampling ? oracle::describe(seen.sampling->witnesses.at(b)) : seen.model) + "; replay: " +
                 cell_replay_command(source, c.method, static_cast<std::uint32_t>(id), c.epsilon, c.sampling, 1.7, v) +
                 " --spacing 3 --frustum-resolution 128");

@@ -7,7 +7,7 @@
 #include "core/scene_io.hpp"
 #include "engine/shrinking/circle_tiling.hpp"
 #include "generators/open_space.hpp"
-#include "generators/street_cells.hpp"
+#include "generators/navigable_regions.hpp"
 #include "reports/statistics.hpp"
 #include "reports/verification.hpp"
 
@@ -24,12 +24,6 @@ std::vector<std::size_t> spread(std::size_t total, std::size_t n) {
 }
 
 }  // namespace
-
-void require_street_cells(const Scene& scene) {
-  if (!generators::street_cells_of(scene))
-    throw InputError("view cells", "scene", "has no street cells: generator '" + scene.provenance.generator +
-                                                "' is not of the Manhattan family (manhattan, plaza, default, thesis)");
-}
 
 std::vector<Camera> cell_viewpoints(const ViewCell& cell, const Camera& clip) {
   std::vector<Vec2> points;
@@ -66,8 +60,8 @@ std::string cell_replay_command(const SceneSource& source, const std::string& me
 
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
                                 const MethodOptions& method_options) {
-  require_street_cells(scene);
-  const auto cells = generators::street_cells_of(scene);
+  const std::vector<NavigableRegion> regions = generators::navigable_regions(scene);
+  const auto cells = &regions;
   std::vector<std::size_t> chosen;
   for (std::size_t c = 0; c < cells->size(); c += std::max<std::size_t>(1, options.cell_stride)) chosen.push_back(c);
   const std::vector<std::size_t> checked = spread(chosen.size(), options.oracle_cells);
@@ -163,7 +157,7 @@ nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, c
 std::string view_cell_table(const nlohmann::json& report) {
   std::ostringstream out;
   out << "view cells: " << report["cells_computed"].get<std::size_t>() << " of " << report["cells"].get<std::size_t>()
-      << " street cells, " << report["buildings"].get<std::size_t>() << " buildings, eps " << report["epsilon"].get<double>()
+      << " cells, " << report["buildings"].get<std::size_t>() << " buildings, eps " << report["epsilon"].get<double>()
       << " m, " << report["cells_checked_by_oracle"].get<std::size_t>() << " cells held to the oracle\n";
   char line[256];
   std::snprintf(line, sizeof line, "%-32s %-8s %8s %9s %9s %9s %9s %8s %6s %5s\n", "method", "sampling", "samples",

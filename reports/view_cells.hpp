@@ -1,7 +1,8 @@
-// From-region PVSs of view cells (issue 4, thesis ch. 5.1): every street cell of a Manhattan-family
-// city (generators/street_cells.hpp), each method and sampling, the cost per cell and in total,
-// the saving of carrying decisions between neighbouring samples, and the oracle's check from
-// viewpoints inside some cells (corners, edge midpoints, an interior grid).
+// From-region PVSs of view cells (issue 4, thesis ch. 5.1): every navigable region of a scene (the
+// street cells of a Manhattan-family city, else free-space cells: generators/navigable_regions.hpp),
+// each method and sampling, the cost per cell and in total, the saving of carrying decisions
+// between neighbouring samples, and the oracle's check from viewpoints inside some cells (corners,
+// edge midpoints, an interior grid).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -21,7 +22,7 @@ struct ViewCellOptions {
   std::vector<CellSampling> samplings{CellSampling::boundary, CellSampling::tiled};
   double epsilon = 1.4142135623730951;  // √2 m, as the thesis's walk
   double eye_height = 1.7;
-  std::size_t cell_stride = 1;    // every k-th cell (1 = all street cells)
+  std::size_t cell_stride = 1;    // every k-th cell (1 = all navigable regions)
   std::size_t oracle_cells = 8;   // cells held to the oracle, spread over the city
   oracle::OracleOptions oracle;
 };
@@ -34,11 +35,7 @@ std::vector<Camera> cell_viewpoints(const ViewCell& cell, const Camera& clip = {
 std::string cell_replay_command(const SceneSource& source, const std::string& method, std::uint32_t cell, double epsilon,
                                 CellSampling sampling, double eye_height, const Camera& from);
 
-// Throws InputError when the scene has no street cells (not from a Manhattan-family generator).
-void require_street_cells(const Scene& scene);
-
 // {"epsilon", "eye_height", "cells", "cells_computed", "runs": [{method, sampling, carry, ...}]}.
-// Throws InputError when the scene has no street cells (not from a Manhattan-family generator).
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
                                 const MethodOptions& method_options);
 std::string view_cell_table(const nlohmann::json& report);

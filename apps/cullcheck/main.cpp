@@ -402,12 +402,13 @@ int main(int argc, char** argv) {
   cc::ViewCellOptions view_cell_options;
   std::string view_cell_sampling = "boundary,tiled";
   report->add_flag("--view-cells", view_cells,
-                   "Also compute the from-region PVS of every street cell with each region method and sampling, "
+                   "Also compute the from-region PVS of every navigable region (street or free-space cell) with each region "
+                   "method and sampling, "
                    "hold some cells to the oracle, into report.json's \"view_cells\"");
   report->add_option("--view-cell-epsilon", view_cell_options.epsilon, "ε (m) of the view cells' sample discs")
       ->capture_default_str()
       ->check(CLI::Range(1e-3, 1e3));
-  report->add_option("--view-cell-stride", view_cell_options.cell_stride, "Compute every n-th street cell")
+  report->add_option("--view-cell-stride", view_cell_options.cell_stride, "Compute every n-th navigable region")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
   report->add_option("--view-cell-oracle-cells", view_cell_options.oracle_cells, "Street cells held to the oracle")
@@ -578,7 +579,6 @@ int main(int argc, char** argv) {
     if (*report) {
       const cc::Scene scene = report_scene.source.load();
       if (view_cells) {  // bad view-cell input fails before the long run, not after it
-        cc::require_street_cells(scene);
         view_cell_options.samplings.clear();
         for (std::size_t start = 0; start <= view_cell_sampling.size();) {  // comma-separated names
           const std::size_t comma = std::min(view_cell_sampling.find(',', start), view_cell_sampling.size());

@@ -1,4 +1,5 @@
-// Google Benchmark drivers: generation time; view-cell PVSs (issue 4); thesis Table 3.2 (OH(IS), OH(OS), ΔH culling time
+// Google Benchmark drivers: generation time; view-cell PVSs (issue 4); VbAoI nodes and simulations
+// (issue 5); thesis Table 3.2 (OH(IS), OH(OS), ΔH culling time
 // along a 1,000-frame street walk on the 160,000-building city); and how each method's cost grows
 // with the city (10k, 40k, 160k, 640k buildings). Each benchmark repeats five times and reports
 // the median; compare methods as ratios of medians from one run, never across runs or machines.
@@ -17,6 +18,9 @@
 #include "generators/city.hpp"
 #include "generators/street_cells.hpp"
 #include "engine/shrinking/view_cell.hpp"
+#include "engine/vbaoi/navigation_graph.hpp"
+#include "engine/vbaoi/simulation.hpp"
+#include "generators/navigable_regions.hpp"
 
 namespace cullcheck {
 namespace {
@@ -187,6 +191,58 @@ CULLCHECK_CELL_BENCH(shrink_adjustable_thesis);
 CULLCHECK_CELL_BENCH(shrink_adjustable_corrected);
 CULLCHECK_CELL_BENCH(shrink_adjustable_conservative);
 CULLCHECK_CELL_BENCH(shrink_minkowski);
+
+// VbAoI (issue 5) on the default city: one node's PVSo and PVSn (view cell plus the navigable
+// regions as passive targets; compare with BM_ViewCell/shrink_former/1 for what PVSn adds), and
+// the simulation of 10, 100 and 1,000 clients for 5 simulated seconds without the oracle's line-
+// of-sight checks (its own cost, from one graph built once). One iteration: one node / one run.
+struct DefaultCityGraph {
+  Scene scene = generators::make_city("default", 1, nlohmann::json::object());
+  std::vector<NavigableRegion> regions = generators::navigable_regions(scene);
+  NavigationGraph graph;
+};
+DefaultCityGraph& default_city_graph(bool with_graph) {
+  static DefaultCityGraph g;
+  if (with_graph && g.graph.nodes.empty()) {
+    NavigationGraphOptions o;
+    o.threads = 2;
+    g.graph = build_navigation_graph(g.scene, g.regions, o);
+  }
+  return g;
+}
+
+void BM_VbaoiNode(benchmark::State& state) {
+  const DefaultCityGraph& g = default_city_graph(false);
+  NodeVisibility nodes(g.scene, g.regions, NavigationGraphOptions{});
+  std::size_t next = 0;
+  double pvs_o = 0, pvs_n = 0, done = 0;
+  for (auto _ : state) {
+    const ViewCellResult r = nodes.compute((next++ * 37) % g.regions.size());
+    pvs_o += static_cast<double>(r.pvs.size());
+    pvs_n += static_cast<double>(r.passive.size());
+    ++done;
+  }
+  state.counters["pvs_o_per_node"] = pvs_o / done;
+  state.counters["pvs_n_per_node"] = pvs_n / done;
+}
+BENCHMARK(BM_VbaoiNode)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
+
+void BM_VbaoiSimulation(benchmark::State& state) {
+  const DefaultCityGraph& g = default_city_graph(true);
+  vbaoi::SimulationOptions o;
+  o.clients = static_cast<std::uint32_t>(state.range(0));
+  o.duration = 5.0;
+  double client_ticks = 0, messages = 0;
+  for (auto _ : state) {
+    const vbaoi::SimulationResult r = vbaoi::simulate(g.scene, g.graph, o, {});
+    client_ticks += static_cast<double>(r.active_client_ticks);
+    messages += static_cast<double>(r.policies[0].messages);
+  }
+  state.counters["client_ticks_per_second"] = benchmark::Counter(client_ticks, benchmark::Counter::kIsRate);
+  state.counters["vbaoi_messages_per_run"] = messages / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_VbaoiSimulation)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->Repetitions(5)
+    ->ReportAggregatesOnly(true);
 
 }  // namespace
 }  // namespace cullcheck
