@@ -348,7 +348,8 @@ int main(int argc, char** argv) {
   // vbaoi ------------------------------------------------------------------------------------
   CLI::App* vbaoi = app.add_subcommand(
       "vbaoi", "VbAoI (thesis ch. 5): build the navigable-region graph (PVSo, PVSn, SNs), simulate clients with VbAoI, "
-               "broadcast and circular AoI, check channel grouping against the oracle; exit 1 on a violation");
+               "broadcast, neighbours-only and circular AoI, check channel grouping against the oracle; exit 1 on a "
+               "violation");
   SceneFlags vbaoi_scene;
   vbaoi_scene.add(*vbaoi);
   MethodFlags vbaoi_tuning;

@@ -148,7 +148,6 @@ class Simulation {
     subs_.resize(o.clients);
     members_.resize(graph.nodes.size());
     known_.assign(o.clients, 0);
-    placed_.assign(o.clients, 0);
     server_node_.assign(o.clients, 0);
     clients_in_.assign(graph.nodes.size(), 0);
     last_pos_.resize(o.clients);
@@ -540,9 +539,7 @@ class Simulation {
       case MessageKind::join_request: {
         const std::int64_t node = locate_node(graph_, m.position, -1, 1e-6);
         if (node < 0) return;  // cannot happen: clients start inside a node
-        known_[m.client] = 1;
-        move_known_position(m.client, m.position);
-        place(m.client, static_cast<NodeId>(node));
+        if (!known_[m.client]) admit(m.client, m.position, static_cast<NodeId>(node));  // not on a resent request
         Message r = make(MessageKind::join_reply);
         r.channel = static_cast<std::uint32_t>(node);
         r.bytes = kHeaderBytes + 4 + 4 + 8 * graph_.nodes[static_cast<std::size_t>(node)].coords.size();
@@ -635,7 +632,7 @@ class Simulation {
         };
         tally(r_.policies[kVbaoi], contains(listeners, x));
         tally(r_.policies[kBroadcast], known_[x] != 0);
-        tally(r_.policies[kNeighbours], placed_[x] != 0 && adjacent_or_same(server_node_[x], m.channel));
+        tally(r_.policies[kNeighbours], known_[x] != 0 && adjacent_or_same(server_node_[x], m.channel));
         for (std::size_t p = kFirstCircular; p < r_.policies.size(); ++p)
           tally(r_.policies[p], length(last_pos_[x] - m.position) <= r_.policies[p].radius);
       }
@@ -644,12 +641,19 @@ class Simulation {
     move_known_position(y, m.position);
   }
 
+  // The server learns of a client from its join request; from then on every policy counts it.
+  void admit(std::uint32_t c, Vec2 position, NodeId node) {
+    known_[c] = 1;
+    ++known_count_;
+    server_node_[c] = node;
+    ++clients_in_[node];
+    move_known_position(c, position);
+  }
   // The node the server last heard a client in (join, welcome, or an update's channel): what the
   // neighbours baseline routes by.
   void place(std::uint32_t c, NodeId node) {
-    if (server_node_[c] == node && placed_[c]) return;
-    if (placed_[c]) --clients_in_[server_node_[c]];
-    placed_[c] = 1;
+    if (server_node_[c] == node) return;
+    --clients_in_[server_node_[c]];
     server_node_[c] = node;
     ++clients_in_[node];
   }
@@ -664,9 +668,7 @@ class Simulation {
     return (static_cast<std::uint64_t>(ix) << 32) ^ static_cast<std::uint32_t>(iy);
   }
   void move_known_position(std::uint32_t c, Vec2 p) {
-    if (!known_[c]) return;
     // Every key is a valid cell (cell (-1, -1) hashes to ~0), so "not yet placed" is its own state.
-    if (!cell_of_[c]) ++known_count_;
     const std::uint64_t cell = grid_cell(p);
     if (cell != cell_of_[c]) {
       if (cell_of_[c]) erase_sorted(grid_[*cell_of_[c]], c);
@@ -704,7 +706,6 @@ class Simulation {
   std::vector<std::vector<std::uint32_t>> subs_;     // per client: its channels
   std::vector<std::vector<std::uint32_t>> members_;  // per channel: its listeners
   std::vector<char> known_;
-  std::vector<char> placed_;
   std::vector<NodeId> server_node_;
   std::vector<std::size_t> clients_in_;  // per node: clients the server places there
   std::size_t known_count_ = 0;
