@@ -177,6 +177,30 @@ TEST(NavigationGraph, InvariantsHoldOnStreetAndFreeSpaceGraphs) {
   }
 }
 
+// Intersection and union give symmetric PVSn; intersection's lists are within union's, and they
+// differ by exactly the one-sided entries (each dropped from its lister, or mirrored to the other).
+TEST(NavigationGraph, PvsnSymmetryByIntersectionIsWithinUnion) {
+  const Scene scene = generators::make_city("irregular", 6, {{"count", 15}, {"area_size", 200}});
+  const auto regions = generators::navigable_regions(scene);
+  NavigationGraphOptions o = graph_options();
+  const NavigationGraph both = build_navigation_graph(scene, regions, o);
+  o.symmetry = PvsnSymmetry::union_of_both;
+  const NavigationGraph either = build_navigation_graph(scene, regions, o);
+  EXPECT_TRUE(graph_invariant_violations(both).empty());
+  EXPECT_TRUE(graph_invariant_violations(either).empty());
+  EXPECT_EQ(both.stats.pvs_n_one_sided, either.stats.pvs_n_one_sided);
+  EXPECT_GT(both.stats.pvs_n_one_sided, 0u);  // free-space cells of unequal size: the case intersection is for
+  std::size_t both_entries = 0, either_entries = 0;
+  for (std::size_t i = 0; i < both.nodes.size(); ++i) {
+    EXPECT_TRUE(std::includes(either.nodes[i].pvs_n.begin(), either.nodes[i].pvs_n.end(), both.nodes[i].pvs_n.begin(),
+                              both.nodes[i].pvs_n.end()));
+    both_entries += both.nodes[i].pvs_n.size();
+    either_entries += either.nodes[i].pvs_n.size();
+  }
+  EXPECT_EQ(either_entries - both_entries, 2 * both.stats.pvs_n_one_sided);
+  EXPECT_THROW(parse_pvs_n_symmetry("sideways"), std::invalid_argument);
+}
+
 // The checker itself: each broken rule is named.
 TEST(NavigationGraph, InvariantCheckerNamesEachBrokenRule) {
   const Scene scene = generators::make_city("manhattan", 3, {{"blocks_x", 2}, {"blocks_y", 1}});
@@ -371,15 +395,18 @@ struct CityGraph {
   std::unique_ptr<oracle::RayOracle> oracle;
 };
 
-const CityGraph& city_graph(std::size_t city, const std::string& method) {
+const CityGraph& city_graph(std::size_t city, const std::string& method,
+                            PvsnSymmetry symmetry = PvsnSymmetry::intersection) {
   static std::mutex mutex;
-  static std::map<std::pair<std::size_t, std::string>, std::unique_ptr<CityGraph>> cache;
+  static std::map<std::tuple<std::size_t, std::string, PvsnSymmetry>, std::unique_ptr<CityGraph>> cache;
   const std::lock_guard lock(mutex);
-  auto& slot = cache[{city, method}];
+  auto& slot = cache[{city, method, symmetry}];
   if (!slot) {
     slot = std::make_unique<CityGraph>();
     slot->scene = generators::scene_of(simulation_cities()[city]);
-    slot->graph = build_navigation_graph(slot->scene, generators::navigable_regions(slot->scene), graph_options(method));
+    NavigationGraphOptions o = graph_options(method);
+    o.symmetry = symmetry;
+    slot->graph = build_navigation_graph(slot->scene, generators::navigable_regions(slot->scene), o);
     slot->oracle = std::make_unique<oracle::RayOracle>(slot->scene);
   }
   return *slot;
@@ -392,11 +419,13 @@ vbaoi::LineOfSight line_of_sight(const CityGraph& g) {
 struct SimulationCase {
   std::size_t city = 0;
   std::string method;
+  PvsnSymmetry symmetry = PvsnSymmetry::intersection;
   vbaoi::SimulationOptions options;
 };
 void showValue(const SimulationCase& c, std::ostream& os) {
   VbaoiOptions o;
   o.graph = graph_options(c.method);
+  o.graph.symmetry = c.symmetry;
   o.simulation = c.options;
   os << vbaoi_replay_command(source_of(simulation_cities()[c.city]), o, c.options.clients);
 }
@@ -406,11 +435,13 @@ rc::Gen<SimulationCase> simulation_case() {
       rc::gen::tuple(rc::gen::inRange<std::size_t>(0, simulation_cities().size()),
                      rc::gen::elementOf(passive_capable_conservative_methods()), rc::gen::arbitrary<std::uint64_t>(),
                      rc::gen::inRange<std::uint32_t>(2, 81), rc::gen::element(0.05, 0.1, 0.25, 0.5), rc::gen::inRange(0, 301),
-                     rc::gen::inRange(0, 201), rc::gen::element(0.0, 0.01, 0.1, 0.3), rc::gen::inRange(1, 16)),
+                     rc::gen::inRange(0, 201), rc::gen::element(0.0, 0.01, 0.1, 0.3), rc::gen::inRange(1, 16),
+                     rc::gen::element(PvsnSymmetry::intersection, PvsnSymmetry::union_of_both)),
       [](const auto& t) {
         SimulationCase c;
         c.city = std::get<0>(t);
         c.method = std::get<1>(t);
+        c.symmetry = std::get<9>(t);
         vbaoi::SimulationOptions& o = c.options;
         o.seed = std::get<2>(t);
         o.clients = std::get<3>(t);
@@ -433,7 +464,7 @@ rc::Gen<SimulationCase> simulation_case() {
 // lacks or stands outside its node. Latency, jitter and loss cost stalls, never a miss.
 RC_GTEST_PROP(VbaoiSimulation, ChannelGroupingHoldsUnderLatencyJitterAndLoss, ()) {
   const SimulationCase c = *simulation_case();
-  const CityGraph& g = city_graph(c.city, c.method);
+  const CityGraph& g = city_graph(c.city, c.method, c.symmetry);
   const vbaoi::SimulationResult r = vbaoi::simulate(g.scene, g.graph, c.options, line_of_sight(g));
   const vbaoi::PolicyTraffic& v = r.policies[0];
   RC_ASSERT(v.policy == "vbaoi");

@@ -59,7 +59,8 @@ nlohmann::json graph_json(const Scene& scene, const NavigationGraph& graph) {
           {"pvs_n", spread(pvs_n)},
           {"pvs_n_fraction_of_nodes", graph.nodes.empty() ? 0.0 : mean(pvs_n) / static_cast<double>(graph.nodes.size())},
           {"neighbours", spread(neighbours)},
-          {"pvs_n_added_by_symmetry", graph.stats.pvs_n_added_by_symmetry},
+          {"pvs_n_symmetry", std::string(pvs_n_symmetry_name(graph.options.symmetry))},
+          {"pvs_n_one_sided", graph.stats.pvs_n_one_sided},
           {"pvs_n_added_neighbours", graph.stats.pvs_n_added_neighbours},
           {"invariant_violations", problems.size()},
           {"invariant_problems", first_problems}};
@@ -163,7 +164,7 @@ std::string vbaoi_replay_command(const SceneSource& source, const VbaoiOptions& 
       << round_trip_text(s.speed_max) << " --check-stride " << s.check_stride << " --circular-radii ";
   for (std::size_t i = 0; i < s.circular_radii.size(); ++i) out << (i ? "," : "") << round_trip_text(s.circular_radii[i]);
   if (o.graph.sampling != CellSampling::boundary) out << " --graph-sampling " << cell_sampling_name(o.graph.sampling);
-  out << " --eye-height " << round_trip_text(o.graph.eye_height) << " --cell-size "
+  out << " --pvs-n-symmetry " << pvs_n_symmetry_name(o.graph.symmetry) << " --eye-height " << round_trip_text(o.graph.eye_height) << " --cell-size "
       << round_trip_text(o.regions.cell_size) << " --cell-margin " << round_trip_text(o.regions.margin);
   return out.str();
 }
@@ -263,11 +264,12 @@ std::string vbaoi_table(const nlohmann::json& r) {
                 g["whole_city_bytes"].get<double>() / 1024.0);
   out << line;
   std::snprintf(line, sizeof line,
-                "  PVSn per node: mean %.1f, median %.0f, max %.0f nodes (%.2f%% of the nodes); added by symmetry %llu, "
-                "neighbours added %llu\n",
+                "  PVSn per node: mean %.1f, median %.0f, max %.0f nodes (%.2f%% of the nodes); one-sided entries %llu "
+                "(symmetry by %s), neighbours added %llu\n",
                 g["pvs_n"]["mean"].get<double>(), g["pvs_n"]["median"].get<double>(), g["pvs_n"]["max"].get<double>(),
                 100.0 * g["pvs_n_fraction_of_nodes"].get<double>(),
-                static_cast<unsigned long long>(g["pvs_n_added_by_symmetry"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(g["pvs_n_one_sided"].get<std::uint64_t>()),
+                g["pvs_n_symmetry"].get<std::string>().c_str(),
                 static_cast<unsigned long long>(g["pvs_n_added_neighbours"].get<std::uint64_t>()));
   out << line;
   out << "clients  policy        radius   msgs/tick  KB/tick  vs_vbaoi  visible_upd   missed    lost  grouping_viol\n";

@@ -188,7 +188,7 @@ nlohmann::json pvs_json(const cc::CullResult& r) {
 // VbAoI (issue 5): the graph's from-region method and the simulation's knobs.
 struct VbaoiFlags {
   cc::VbaoiOptions options;
-  std::string sampling = "boundary";
+  std::string sampling = "boundary", symmetry = "intersection";
   // `prefix` keeps the names apart where other flags live (report: "vbaoi-").
   void add(CLI::App& app, const std::vector<std::uint32_t>& default_clients, const std::string& prefix = "") {
     const auto name = [&](const char* flag) { return "--" + prefix + flag; };
@@ -214,6 +214,10 @@ struct VbaoiFlags {
         ->capture_default_str()
         ->check(CLI::Range(1e-3, 1e3));
     app.add_option(name("graph-sampling"), sampling, "View-cell sampling: boundary or tiled")->capture_default_str();
+    app.add_option(name("pvs-n-symmetry"), symmetry,
+                   "An entry only one side's PVSn lists: dropped (intersection: each side alone is conservative) or "
+                   "mirrored (union)")
+        ->capture_default_str();
     app.add_option(name("graph-threads"), options.graph.threads, "Threads computing the graph's nodes")
         ->capture_default_str()
         ->check(CLI::Range(1u, 256u));
@@ -244,6 +248,7 @@ struct VbaoiFlags {
   }
   const cc::VbaoiOptions& resolved() {
     options.graph.sampling = cc::parse_cell_sampling(sampling);
+    options.graph.symmetry = cc::parse_pvs_n_symmetry(symmetry);
     cc::vbaoi::validate(options.simulation);
     return options;
   }

@@ -32,6 +32,14 @@ void sorted_insert(std::vector<NodeId>& v, NodeId x, std::uint64_t& added) {
 
 }  // namespace
 
+std::string_view pvs_n_symmetry_name(PvsnSymmetry s) { return s == PvsnSymmetry::intersection ? "intersection" : "union"; }
+
+PvsnSymmetry parse_pvs_n_symmetry(std::string_view name) {
+  if (name == "intersection") return PvsnSymmetry::intersection;
+  if (name == "union") return PvsnSymmetry::union_of_both;
+  throw std::invalid_argument("unknown PVSn symmetry '" + std::string(name) + "' (known: intersection, union)");
+}
+
 Scene navigable_region_targets(const std::vector<NavigableRegion>& regions, double eye_height) {
   Scene targets;
   targets.provenance.generator = "navigable regions";
@@ -116,12 +124,24 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
   if (failure) std::rethrow_exception(failure);
   graph.stats.samples = samples;
 
-  // Symmetric PVSn, then each node itself and its neighbours (counted separately).
-  std::vector<std::vector<NodeId>> mirrored(graph.nodes.size());
+  // Symmetric PVSn (header: intersection or union), then each node itself and its neighbours.
+  std::vector<std::vector<NodeId>> mirrored(graph.nodes.size());  // A in mirrored[B] iff B in raw PVSn(A), sorted
   for (const NavigationNode& n : graph.nodes)
     for (NodeId m : n.pvs_n) mirrored[m].push_back(n.id);
-  for (NavigationNode& n : graph.nodes)
-    for (NodeId m : mirrored[n.id]) sorted_insert(n.pvs_n, m, graph.stats.pvs_n_added_by_symmetry);
+  for (NavigationNode& n : graph.nodes) {
+    std::vector<NodeId> both;
+    std::set_intersection(n.pvs_n.begin(), n.pvs_n.end(), mirrored[n.id].begin(), mirrored[n.id].end(),
+                          std::back_inserter(both));
+    graph.stats.pvs_n_one_sided += n.pvs_n.size() - both.size();  // each one-sided pair is met once, from its lister
+    if (options.symmetry == PvsnSymmetry::intersection) {
+      n.pvs_n = std::move(both);
+    } else {
+      std::vector<NodeId> either;
+      std::set_union(n.pvs_n.begin(), n.pvs_n.end(), mirrored[n.id].begin(), mirrored[n.id].end(),
+                     std::back_inserter(either));
+      n.pvs_n = std::move(either);
+    }
+  }
   for (NavigationNode& n : graph.nodes) {
     sorted_insert(n.pvs_n, n.id, graph.stats.pvs_n_added_neighbours);
     for (NodeId m : n.neighbours) sorted_insert(n.pvs_n, m, graph.stats.pvs_n_added_neighbours);

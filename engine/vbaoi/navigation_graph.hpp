@@ -16,11 +16,13 @@
 // Mutual visibility (the thesis: "visibility in 360 degrees is mutual"), made explicit: if a
 // client at eye P in node A sees a client at eye Q in node B, the segment PQ is clear; so Q is a
 // point of B's passive target visible from P, and a method conservative over A keeps B in A's
-// PVSn; by the same argument from Q, A is in B's. Each direction is thus covered on its own, so
-// both clients listen to each other's channel. The graph also makes PVSn symmetric (B in PVSn(A)
-// iff A in PVSn(B), by union) so that a node's listeners are exactly its PVSn, and adds each
-// node itself and its neighbours (which any eye on the shared edge sees); how many entries each
-// rule added is counted, and for a conservative method both counts should be small.
+// PVSn; by the same argument from Q, A is in B's. Each direction is thus covered on its own, and
+// both hold together, so PVSn may be made symmetric (B in PVSn(A) iff A in PVSn(B), so that a
+// node's listeners are exactly its PVSn) by intersection: an entry one side lists and the other
+// does not is an over-estimate of the listing side (a large region close by is rarely hidden from
+// a small one, whose far side hides it from the large one). Union, the forgiving choice, is kept
+// for methods that are not conservative. Each node itself and its neighbours (which any eye on
+// the shared edge sees) are added last. The one-sided entries and the added ones are counted.
 // The guarantee is only as good as the method's claim: with shrink_adjustable_thesis (refuted)
 // it is not one, and the channel-grouping property measures what that costs.
 #pragma once
@@ -28,6 +30,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/navigable_region.hpp"
@@ -48,12 +51,19 @@ struct NavigationNode {
   std::vector<NodeId> neighbours;   // SNs, sorted
 };
 
+// How a one-sided PVSn entry (B in raw PVSn(A), A not in raw PVSn(B)) is resolved.
+enum class PvsnSymmetry { intersection, union_of_both };
+std::string_view pvs_n_symmetry_name(PvsnSymmetry s);
+// Throws std::invalid_argument naming the accepted values.
+PvsnSymmetry parse_pvs_n_symmetry(std::string_view name);
+
 struct NavigationGraphOptions {
   std::string method = "shrink_former";  // a region method that supports passive targets
   double epsilon = 1.4142135623730951;   // ε-disc radius of each view-cell sample (half their spacing)
   double eye_height = 1.7;               // every eye and every avatar's eye, metres
   CellSampling sampling = CellSampling::boundary;
   bool carry = true;                     // view-cell decisions carried from sample to sample
+  PvsnSymmetry symmetry = PvsnSymmetry::intersection;
   unsigned threads = 1;                  // nodes computed in parallel, each thread its own method
   MethodOptions method_options;
 };
@@ -61,7 +71,7 @@ struct NavigationGraphOptions {
 struct NavigationGraphStatistics {
   std::vector<double> node_ms;           // wall time of each node's view cell
   std::uint64_t samples = 0;             // view-cell samples over all nodes
-  std::uint64_t pvs_n_added_by_symmetry = 0;
+  std::uint64_t pvs_n_one_sided = 0;     // raw entries without their mirror (dropped or mirrored by `symmetry`)
   std::uint64_t pvs_n_added_neighbours = 0;  // neighbours (or the node itself) the method did not list
   double build_seconds = 0.0;            // wall time of the whole graph
 };
