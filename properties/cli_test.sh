@@ -127,6 +127,9 @@ expect_exit 0 "vbaoi on free-space cells" "$cc" vbaoi --generator irregular --se
 expect_exit 0 "cell PVSn from an eye" "$cc" cell "${vb_city[@]}" --cell 0 --method shrink_former --nodes \
   --from '{"position":[-45,-45,1.7],"hfov":6.283185307179586}' --to -45,40
 grep -q '"node_in_pvs_n":true' "$work/out" && pass || fail "cell --nodes: a street's far end is not in the crossing's PVSn"
+expect_exit 0 "cell on a free-space grid of its own" "$cc" cell --generator irregular --seed 2 --params '{"count":6,"area_size":120}' \
+  --cell 3 --cell-size 40 --method shrink_former --nodes
+grep -q '"pvs_n":\[' "$work/out" && pass || fail "cell --nodes printed no PVSn"
 expect_exit 2 "vbaoi loss" "$cc" vbaoi "${vb_city[@]}" --loss 2
 expect_error_names "vbaoi loss" "loss"
 expect_exit 2 "vbaoi method" "$cc" vbaoi "${vb_city[@]}" --graph-method shrink_adjustable_conservative

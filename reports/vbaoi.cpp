@@ -77,6 +77,7 @@ std::string grouping_replay(const SceneSource& source, const VbaoiOptions& o, co
   return "cullcheck cell " + source.replay_flags() + " --method " + o.graph.method + " --cell " + std::to_string(e.node_a) +
          " --epsilon " + round_trip_text(o.graph.epsilon) + " --sampling " +
          std::string(cell_sampling_name(o.graph.sampling)) + " --eye-height " + round_trip_text(o.graph.eye_height) +
+         " --cell-size " + round_trip_text(o.regions.cell_size) + " --cell-margin " + round_trip_text(o.regions.margin) +
          " --nodes --from " + shell_quote(from) + " --to " + round_trip_text(e.position_b.x) + "," +
          round_trip_text(e.position_b.y);
 }

@@ -331,10 +331,17 @@ int main(int argc, char** argv) {
   double cell_epsilon = std::sqrt(2.0), cell_eye_height = 1.7;
   bool cell_no_carry = false, cell_nodes = false;
   std::vector<double> cell_to;
+  cc::generators::FreeSpaceOptions cell_regions;
   cell->add_option("--method", cell_method, "From-region method for each sample's disc")->capture_default_str();
   cell->add_option("--cell", cell_id, "Navigable region id: a street cell of a Manhattan-family city, else a free-space cell "
                                       "(generators/navigable_regions.hpp)");
   cell->add_option("--ring", cell_ring, "Or the cell as a convex counter-clockwise polygon, JSON [[x,y],...]");
+  cell->add_option("--cell-size", cell_regions.cell_size, "Free-space cells: side of the grid no cell reaches across, metres")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1e5));
+  cell->add_option("--cell-margin", cell_regions.margin, "Free-space cells: open ground kept around the scene's bounds, metres")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e5));
   cell->add_option("--epsilon", cell_epsilon, "Disc radius ε (m); samples lie at most 2ε apart")
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 1e4));
@@ -497,7 +504,7 @@ int main(int argc, char** argv) {
       if ((cell_id >= 0) == !cell_ring.empty())
         throw cc::InputError("cell", "--cell/--ring", "give exactly one of --cell ID and --ring POLYGON");
       if (cell_id >= 0) {
-        const auto cells = cc::generators::navigable_regions(scene);
+        const auto cells = cc::generators::navigable_regions(scene, cell_regions);
         if (static_cast<std::size_t>(cell_id) >= cells.size())
           throw cc::InputError("cell", "--cell", "is " + std::to_string(cell_id) + ", the scene has " +
                                                      std::to_string(cells.size()) + " navigable regions (street cells or free-space cells)");
@@ -517,7 +524,7 @@ int main(int argc, char** argv) {
         throw cc::InputError("cell", "--to", "needs --nodes and --from");
       std::vector<cc::NavigableRegion> regions;
       if (cell_nodes) {
-        regions = cc::generators::navigable_regions(scene);
+        regions = cc::generators::navigable_regions(scene, cell_regions);
         method->set_passive_targets(cc::navigable_region_targets(regions, cell_eye_height));
       }
       const cc::ViewCellResult r =
