@@ -14,12 +14,15 @@
 
 // Why VbAoI routes every visible update (the channel-grouping argument the properties check):
 // let client x see client y at tick t, x in node A, y in node B. The graph puts B in PVSn(A)
-// (navigation_graph.hpp). x entered A only after the server acknowledged PVSn(A), so the server
-// held x on channel B at t. y's update of t, published on B, reaches the server at most one
-// latency bound L = latency + jitter later (links are FIFO, and y sent nothing later before it).
-// A channel leaves x's subscriptions only through an unsubscribe sent at least L after the last
-// moment x wanted it, and wanted it at t, so it arrives after L + latency > L: after the update.
-// So the update is routed to x. Stalls, not misses, are what latency and loss cost.
+// (navigation_graph.hpp). x entered A only when every channel of PVSn(A) was confirmed: its latest
+// subscribe/unsubscribe request was an acknowledged subscribe, so the server held x on channel B
+// at t and nothing x had sent could still remove it. y's update of t, published on B, reaches
+// the server at most one latency bound L = latency + jitter later (links are FIFO, and y sent
+// nothing later before it). A channel leaves x's subscriptions only through an unsubscribe sent
+// at least L after the last moment x wanted it, and x wanted B at t, so that unsubscribe arrives
+// no earlier than t + L, and at a tie after the update (events at one time run in sending order).
+// So the update is routed to x. Stalls, not misses, are what latency and loss cost. (A first
+// version counted a channel as held while its unsubscribe was in flight: the property found it.)
 
 namespace cullcheck::vbaoi {
 namespace {
@@ -27,7 +30,6 @@ namespace {
 using Micros = std::int64_t;
 Micros micros(double seconds) { return static_cast<Micros>(std::llround(seconds * 1e6)); }
 
-constexpr std::uint32_t kServer = 0xFFFFFFFFu;
 // Order of SimulationResult::policies.
 constexpr std::size_t kVbaoi = 0, kBroadcast = 1, kNeighbours = 2, kFirstCircular = 3;
 constexpr std::size_t kExamples = 3;  // grouping violations kept per policy
@@ -188,7 +190,7 @@ class Simulation {
     std::vector<double> cumulative;
     double total = 0.0;
     for (const NavigationNode& n : graph_.nodes) {
-      total += 0.5 * std::abs(signed_area(n.coords));
+      total += std::abs(signed_area(n.coords));
       cumulative.push_back(total);
     }
     clients_.resize(o_.clients);
