@@ -41,6 +41,18 @@ bool ring_contains(const std::vector<Vec2>& ring, Vec2 p, double tolerance) {
   return !ring.empty();
 }
 
+Vec2 random_point_in(const std::vector<Vec2>& ring, Random& rng) {
+  Box2 box;
+  for (Vec2 v : ring) box.extend(v);
+  for (int attempt = 0; attempt < 64; ++attempt) {
+    const Vec2 p{rng.uniform_real(box.lo.x, box.hi.x), rng.uniform_real(box.lo.y, box.hi.y)};
+    if (ring_contains(ring, p, 0.0)) return p;
+  }
+  Vec2 c{0, 0};
+  for (Vec2 v : ring) c = c + v;
+  return c * (1.0 / static_cast<double>(ring.size()));
+}
+
 std::int64_t locate_region(const std::vector<NavigableRegion>& regions, Vec2 point, double tolerance) {
   for (const NavigableRegion& r : regions)
     if (ring_contains(r.ring, point, tolerance)) return r.id;

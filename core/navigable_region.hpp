@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/random.hpp"
 
 namespace cullcheck {
 
@@ -29,6 +30,10 @@ std::optional<std::pair<Vec2, Vec2>> shared_edge(const std::vector<Vec2>& a, con
 // Whether `point` lies in the convex counter-clockwise `ring`, admitting points up to `tolerance`
 // metres outside it.
 bool ring_contains(const std::vector<Vec2>& ring, Vec2 point, double tolerance = 1e-9);
+
+// A uniform point of the convex `ring`: rejection in its bounding box, up to 64 draws, then the
+// vertices' mean (only a sliver of a ring gets that far).
+Vec2 random_point_in(const std::vector<Vec2>& ring, Random& rng);
 
 // The first region (by id) containing `point` within `tolerance`; -1 when none.
 std::int64_t locate_region(const std::vector<NavigableRegion>& regions, Vec2 point, double tolerance = 1e-9);

@@ -43,19 +43,6 @@ SceneSource source_of(const SceneSpec& spec) {
   return s;
 }
 
-// A uniform point of a convex ring (rejection in its box; the centroid if that keeps failing).
-Vec2 point_in(const std::vector<Vec2>& ring, Random& rng) {
-  Box2 box;
-  for (Vec2 v : ring) box.extend(v);
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    const Vec2 p{rng.uniform_real(box.lo.x, box.hi.x), rng.uniform_real(box.lo.y, box.hi.y)};
-    if (ring_contains(ring, p, 0.0)) return p;
-  }
-  Vec2 c{};
-  for (Vec2 v : ring) c = c + v * (1.0 / static_cast<double>(ring.size()));
-  return c;
-}
-
 // Total footprint area of the buildings (footprints never overlap in generated scenes).
 double footprint_area(const Scene& scene) {
   double a = 0.0;
@@ -97,7 +84,7 @@ TEST(FreeSpaceCells, ConvexCellsTileTheOpenGround) {
       EXPECT_GE(box.lo.x, bounds.lo.x);
       EXPECT_LE(box.hi.x, bounds.hi.x);
       for (int k = 0; k < 8; ++k) {
-        const Vec2 p = point_in(c.ring, rng);
+        const Vec2 p = random_point_in(c.ring, rng);
         EXPECT_FALSE(open.inside_building({p.x, p.y, 0.0})) << "point " << p.x << "," << p.y << " is in a building";
       }
       for (std::uint32_t n : c.neighbours) {
@@ -266,7 +253,7 @@ TEST(NavigationGraph, LocateNodeFindsTheCellOfEveryPoint) {
   Random rng(5);
   for (const NavigationNode& n : graph.nodes)
     for (int k = 0; k < 4; ++k) {
-      const Vec2 p = point_in(n.coords, rng);
+      const Vec2 p = random_point_in(n.coords, rng);
       const std::int64_t found = locate_node(graph, p, n.neighbours.empty() ? -1 : n.neighbours.front());
       ASSERT_GE(found, 0);
       EXPECT_TRUE(ring_contains(graph.nodes[static_cast<std::size_t>(found)].coords, p, 1e-9));
@@ -332,7 +319,7 @@ RC_GTEST_PROP(NavigationGraph, NodePvsHoldsForEveryEyeInTheCell, ()) {
   std::vector<Camera> eyes = cell_viewpoints(cell);
   for (int k = 0; k < 4; ++k) {
     Camera e = eyes.front();
-    const Vec2 p = point_in(cell.ring, rng);
+    const Vec2 p = random_point_in(cell.ring, rng);
     e.position = {p.x, p.y, o.eye_height};
     eyes.push_back(e);
   }
@@ -349,7 +336,7 @@ RC_GTEST_PROP(NavigationGraph, NodePvsHoldsForEveryEyeInTheCell, ()) {
       const Vec2 q = d > 0.02 ? p + (centre - p) * (0.01 / d) : centre;
       avatars.emplace_back(r.id, Vec3{q.x, q.y, o.eye_height});
     }
-    const Vec2 p = point_in(r.ring, rng);
+    const Vec2 p = random_point_in(r.ring, rng);
     avatars.emplace_back(r.id, Vec3{p.x, p.y, o.eye_height});
   }
   const oracle::Oracle truth(scene);

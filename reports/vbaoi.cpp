@@ -28,8 +28,6 @@ nlohmann::json graph_json(const Scene& scene, const NavigationGraph& graph) {
   std::vector<double> pvs_o, pvs_n, neighbours, pvs_o_bytes;
   std::map<ObjectId, const Building*> by_id;
   for (const Building& b : scene.buildings) by_id[b.id] = &b;
-  std::uint64_t city_bytes = 0;
-  for (const Building& b : scene.buildings) city_bytes += vbaoi::building_bytes(b);
   for (const NavigationNode& n : graph.nodes) {
     pvs_o.push_back(static_cast<double>(n.pvs_o.size()));
     pvs_n.push_back(static_cast<double>(n.pvs_n.size()));
@@ -55,7 +53,7 @@ nlohmann::json graph_json(const Scene& scene, const NavigationGraph& graph) {
           {"pvs_o", spread(pvs_o)},
           {"pvs_o_fraction_of_city", scene.buildings.empty() ? 0.0 : mean(pvs_o) / static_cast<double>(scene.buildings.size())},
           {"pvs_o_bytes", spread(pvs_o_bytes)},
-          {"whole_city_bytes", city_bytes},
+          {"whole_city_bytes", vbaoi::whole_city_bytes(scene)},
           {"pvs_n", spread(pvs_n)},
           {"pvs_n_fraction_of_nodes", graph.nodes.empty() ? 0.0 : mean(pvs_n) / static_cast<double>(graph.nodes.size())},
           {"neighbours", spread(neighbours)},

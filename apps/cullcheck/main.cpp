@@ -503,12 +503,13 @@ int main(int argc, char** argv) {
       cc::ViewCell view_cell{{}, cell_eye_height};
       if ((cell_id >= 0) == !cell_ring.empty())
         throw cc::InputError("cell", "--cell/--ring", "give exactly one of --cell ID and --ring POLYGON");
+      std::vector<cc::NavigableRegion> regions;  // the cell's, and the passive targets of --nodes
+      if (cell_id >= 0 || cell_nodes) regions = cc::generators::navigable_regions(scene, cell_regions);
       if (cell_id >= 0) {
-        const auto cells = cc::generators::navigable_regions(scene, cell_regions);
-        if (static_cast<std::size_t>(cell_id) >= cells.size())
+        if (static_cast<std::size_t>(cell_id) >= regions.size())
           throw cc::InputError("cell", "--cell", "is " + std::to_string(cell_id) + ", the scene has " +
-                                                     std::to_string(cells.size()) + " navigable regions (street cells or free-space cells)");
-        view_cell.ring = cells[static_cast<std::size_t>(cell_id)].ring;
+                                                     std::to_string(regions.size()) + " navigable regions (street cells or free-space cells)");
+        view_cell.ring = regions[static_cast<std::size_t>(cell_id)].ring;
       } else {
         const nlohmann::json ring = PathFlags::parse_json(cell_ring, "ring");
         if (!ring.is_array()) throw cc::InputError("cell", "--ring", "must be a JSON array of [x, y] pairs");
@@ -522,13 +523,9 @@ int main(int argc, char** argv) {
       const cc::CellSampling sampling = cc::parse_cell_sampling(cell_sampling);
       if (!cell_to.empty() && (!cell_nodes || cell_from.empty()))
         throw cc::InputError("cell", "--to", "needs --nodes and --from");
-      std::vector<cc::NavigableRegion> regions;
-      if (cell_nodes) {
-        regions = cc::generators::navigable_regions(scene, cell_regions);
-        method->set_passive_targets(cc::navigable_region_targets(regions, cell_eye_height));
-      }
+      if (cell_nodes) method->set_passive_targets(cc::navigable_region_targets(regions, cell_eye_height));
       const cc::ViewCellResult r =
-          cc::ViewCellPvs(*method, scene, regions.size()).compute(view_cell, cell_epsilon, sampling, !cell_no_carry);
+          cc::ViewCellPvs(*method, scene, cell_nodes ? regions.size() : 0).compute(view_cell, cell_epsilon, sampling, !cell_no_carry);
       nlohmann::json out = {{"method", cell_method},      {"epsilon", cell_epsilon},
                             {"sampling", cell_sampling},  {"samples", r.samples},
                             {"pvs", r.pvs},               {"pvs_size", r.pvs.size()},

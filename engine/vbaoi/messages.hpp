@@ -44,5 +44,11 @@ inline std::size_t node_data_bytes(const NavigationNode& n) {
          id_list_bytes(n.neighbours.size());
 }
 inline std::size_t building_bytes(const Building& b) { return 4 + 4 + 4 + 8 * b.footprint.size(); }
+// Every building's geometry: what a client without VbAoI loads.
+inline std::uint64_t whole_city_bytes(const Scene& scene) {
+  std::uint64_t bytes = 0;
+  for (const Building& b : scene.buildings) bytes += building_bytes(b);
+  return bytes;
+}
 
 }  // namespace cullcheck::vbaoi

@@ -144,7 +144,7 @@ class Simulation {
       p.messages_per_tick.assign(ticks_, 0);
       p.bytes_per_tick.assign(ticks_, 0);
     }
-    for (const Building& b : scene.buildings) r_.whole_city_bytes += building_bytes(b);
+    r_.whole_city_bytes = whole_city_bytes(scene);
     building_index_.reserve(scene.buildings.size());
     for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) building_index_[scene.buildings[b].id] = b;
     subs_.resize(o.clients);
@@ -202,19 +202,8 @@ class Simulation {
       const double pick = cl.walk.uniform_real(0.0, total);
       const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), pick);
       cl.node = static_cast<NodeId>(std::min<std::size_t>(it - cumulative.begin(), graph_.nodes.size() - 1));
-      cl.pos = point_in(graph_.nodes[cl.node].coords, cl.walk);
+      cl.pos = random_point_in(graph_.nodes[cl.node].coords, cl.walk);
     }
-  }
-  static Vec2 point_in(const std::vector<Vec2>& ring, Random& rng) {
-    Box2 box;
-    for (Vec2 v : ring) box.extend(v);
-    for (int attempt = 0; attempt < 64; ++attempt) {
-      const Vec2 p{rng.uniform_real(box.lo.x, box.hi.x), rng.uniform_real(box.lo.y, box.hi.y)};
-      if (ring_contains(ring, p, 0.0)) return p;
-    }
-    Vec2 c{0, 0};
-    for (Vec2 v : ring) c = c + v;
-    return c * (1.0 / static_cast<double>(ring.size()));
   }
 
   // --- events and the network --------------------------------------------------------------
