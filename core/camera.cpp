@@ -1,5 +1,6 @@
 #include "core/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -31,13 +32,34 @@ void validate(const Camera& c, const std::string& object) {
   // Occlusion arguments assume a viewer on or above the ground plane (nothing is seen through it).
   if (c.position.z < 0.0) throw InputError(object, "position.z", "eye is below the ground plane (z < 0)");
   if (c.pitch < -kPi / 2 || c.pitch > kPi / 2) throw InputError(object, "pitch", "must lie in [-pi/2, pi/2]");
-  if (!c.omnidirectional()) {
+  if ((c.width == 0) != (c.height == 0)) throw InputError(object, "resolution", "give both width and height, or neither");
+  if (c.width < 0 || c.height < 0 || c.width > kMaxImageSide || c.height > kMaxImageSide)
+    throw InputError(object, "resolution", "each side must lie in [1, 8192] pixels");
+  if (c.orthographic()) {
+    require_finite(c.ortho_width, object, "ortho_width");
+    require_finite(c.ortho_height, object, "ortho_height");
+    if (!(c.ortho_width > 0.0 && c.ortho_width <= 1e7)) throw InputError(object, "ortho_width", "must lie in (0, 1e7] metres");
+    if (!(c.ortho_height > 0.0 && c.ortho_height <= 1e7)) throw InputError(object, "ortho_height", "must lie in (0, 1e7] metres");
+    if (!(c.near >= 0.0)) throw InputError(object, "near", "must be >= 0");
+  } else if (!c.omnidirectional()) {
     if (!(c.hfov > 0.0 && c.hfov < kPi))
       throw InputError(object, "hfov", "must lie in (0, pi) for a perspective camera, or be 2*pi for 360-degree mode");
     if (!(c.vfov > 0.0 && c.vfov < kPi)) throw InputError(object, "vfov", "must lie in (0, pi)");
     if (!(c.near >= 0.0)) throw InputError(object, "near", "must be >= 0");
   }
   if (!(c.far > c.near)) throw InputError(object, "far", "must be greater than near");
+}
+
+Resolution resolution_of(const Camera& c) {
+  if (c.width > 0 && c.height > 0) return {c.width, c.height};
+  double rows_per_column = 0.5;  // an equirectangular panorama: 2 pi across, pi high
+  if (c.orthographic()) {
+    rows_per_column = c.ortho_height / c.ortho_width;
+  } else if (!c.omnidirectional()) {
+    rows_per_column = std::tan(c.vfov / 2) / std::tan(c.hfov / 2);
+  }
+  const double rows = std::round(kDefaultImageWidth * rows_per_column);
+  return {kDefaultImageWidth, static_cast<int>(std::clamp(rows, 1.0, double(kMaxImageSide)))};
 }
 
 CameraBasis basis_of(const Camera& c) {
@@ -52,6 +74,16 @@ CameraBasis basis_of(const Camera& c) {
 ViewVolume::ViewVolume(const Camera& c) : eye(c.position), far(c.far), omnidirectional(c.omnidirectional()) {
   if (omnidirectional) return;
   const CameraBasis b = basis_of(c);
+  if (c.orthographic()) {
+    // |(p - eye).right| <= width / 2 and |(p - eye).up| <= height / 2, then near and far.
+    const Vec3 normals[6] = {b.right * -1.0, b.right, b.up * -1.0, b.up, b.forward, b.forward * -1.0};
+    const double half[4] = {c.ortho_width / 2, c.ortho_width / 2, c.ortho_height / 2, c.ortho_height / 2};
+    for (int i = 0; i < 6; ++i) planes[i] = {normals[i], -dot(normals[i], eye) + (i < 4 ? half[i] : 0.0)};
+    planes[4].d -= c.near;
+    planes[5].d += c.far;
+    plane_count = 6;
+    return;
+  }
   const double sh = std::sin(c.hfov / 2), ch = std::cos(c.hfov / 2);
   const double sv = std::sin(c.vfov / 2), cv = std::cos(c.vfov / 2);
   const Vec3 normals[6] = {

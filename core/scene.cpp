@@ -1,5 +1,9 @@
 #include "core/scene.hpp"
 
+#include <algorithm>
+#include <map>
+#include <utility>
+
 #include "core/convex_partition.hpp"
 
 namespace cullcheck {
@@ -7,12 +11,14 @@ namespace cullcheck {
 Box3 Scene::bounds() const {
   Box3 box;
   for (const Building& b : buildings) box.extend(b.bounds.lo), box.extend(b.bounds.hi);
+  for (const MeshObject& m : meshes) box.extend(m.bounds.lo), box.extend(m.bounds.hi);
   return box;
 }
 
 std::size_t Scene::triangle_count() const {
   std::size_t n = 0;
   for (const Building& b : buildings) n += b.triangle_count();
+  for (const MeshObject& m : meshes) n += m.triangles.size();
   return n;
 }
 
@@ -20,6 +26,41 @@ const Building* Scene::find(ObjectId id) const {
   for (const Building& b : buildings)
     if (b.id == id) return &b;
   return nullptr;
+}
+
+const MeshObject* Scene::find_mesh(ObjectId id) const {
+  for (const MeshObject& m : meshes)
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+std::vector<ObjectId> Scene::ids() const {
+  std::vector<ObjectId> out;
+  out.reserve(object_count());
+  for (const Building& b : buildings) out.push_back(b.id);
+  for (const MeshObject& m : meshes) out.push_back(m.id);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void finish_mesh(MeshObject& m) {
+  m.bounds = Box3{};
+  // Directed edge -> count; closed when each edge (a, b) is matched by exactly one (b, a).
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      m.bounds.extend(m.vertices[t[k]]);
+      ++edges[{t[k], t[(k + 1) % 3]}];
+    }
+  }
+  m.closed = !m.triangles.empty();
+  for (const auto& [e, count] : edges) {
+    const auto twin = edges.find({e.second, e.first});
+    if (count != 1 || twin == edges.end() || twin->second != 1) {
+      m.closed = false;
+      break;
+    }
+  }
 }
 
 double signed_area(const std::vector<Vec2>& ring) {

@@ -72,6 +72,40 @@ void validate_and_finish(Building& b) {
   finish_building(b);
 }
 
+std::size_t validate_and_finish(MeshObject& m, bool drop_degenerate) {
+  const std::string object = "mesh " + std::to_string(m.id);
+  if (m.vertices.size() > kMaxMeshVertices) throw InputError(object, "vertices", "has more than 50,000,000 entries");
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    const Vec3 v = m.vertices[i];
+    const std::string field = "vertices[" + std::to_string(i) + "]";
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) throw InputError(object, field, "must be finite");
+    if (std::abs(v.x) > kMaxCoordinate || std::abs(v.y) > kMaxCoordinate)
+      throw InputError(object, field, "lies beyond 1e9 m from the origin");
+    if (std::abs(v.z) > kMaxHeight) throw InputError(object, field, "lies beyond 1e4 m above or below the ground");
+  }
+  std::size_t dropped = 0;
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  kept.reserve(m.triangles.size());
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    const auto& t = m.triangles[i];
+    const std::string field = "triangles[" + std::to_string(i) + "]";
+    for (std::uint32_t k : t)
+      if (k >= m.vertices.size())
+        throw InputError(object, field, "index " + std::to_string(k) + " is out of range (" + std::to_string(m.vertices.size()) + " vertices)");
+    const Vec3 n = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
+    if (!(dot(n, n) > 0.0)) {
+      if (!drop_degenerate) throw InputError(object, field, "has zero area");
+      ++dropped;
+      continue;
+    }
+    kept.push_back(t);
+  }
+  m.triangles = std::move(kept);
+  if (m.triangles.empty()) throw InputError(object, "triangles", "holds no triangle of positive area");
+  finish_mesh(m);
+  return dropped;
+}
+
 Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height) {
   Building b;
   b.id = id;
@@ -82,7 +116,7 @@ Building box_building(ObjectId id, double x0, double y0, double x1, double y1, d
 }
 
 void rebase_if_far(Scene& scene) {
-  if (scene.buildings.empty()) return;
+  if (scene.object_count() == 0) return;
   const Box2 box = scene.bounds().plan();
   const double nearest = std::max({0.0, std::min(std::abs(box.lo.x), std::abs(box.hi.x)),
                                    std::min(std::abs(box.lo.y), std::abs(box.hi.y))});
@@ -94,6 +128,10 @@ void rebase_if_far(Scene& scene) {
     for (Vec2& p : b.footprint) p = p - shift;
     finish_building(b);
   }
+  for (MeshObject& m : scene.meshes) {
+    for (Vec3& v : m.vertices) v = v - Vec3{shift.x, shift.y, 0.0};
+    finish_mesh(m);
+  }
   scene.origin = scene.origin + shift;
 }
 
@@ -103,7 +141,8 @@ Scene scene_from_json_text(const std::string& text) {
   const json& format = member(doc, "format", "scene");
   if (format != "cullcheck-scene") throw InputError("scene", "format", "must be \"cullcheck-scene\"");
   const json& version = member(doc, "version", "scene");
-  if (version != 1) throw InputError("scene", "version", "unsupported version " + version.dump() + " (expected 1)");
+  if (version != 1 && version != 2)
+    throw InputError("scene", "version", "unsupported version " + version.dump() + " (expected 1, or 2 with meshes)");
   Scene scene;
   if (auto it = doc.find("provenance"); it != doc.end()) {
     if (!it->is_object()) throw InputError("scene", "provenance", "must be an object");
@@ -146,6 +185,53 @@ Scene scene_from_json_text(const std::string& text) {
     validate_and_finish(b);
     scene.buildings.push_back(std::move(b));
   }
+  if (auto it = doc.find("meshes"); it != doc.end()) {
+    if (version == 1) throw InputError("scene", "meshes", "needs format version 2");
+    if (!it->is_array()) throw InputError("scene", "meshes", "must be an array");
+    if (it->size() > kMaxMeshes) throw InputError("scene", "meshes", "has more than 20,000,000 entries");
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const json& jm = (*it)[i];
+      std::string object = "mesh at index " + std::to_string(i);
+      if (jm.is_object() && jm.contains("id") && jm["id"].is_number_integer())
+        object = "mesh " + std::to_string(jm["id"].get<long long>());
+      MeshObject m;
+      const json& id = member(jm, "id", object);
+      if (!id.is_number_integer() || id.get<long long>() < 0 || id.get<long long>() > 0xFFFFFFFFLL)
+        throw InputError(object, "id", "must be an integer in [0, 2^32)");
+      m.id = static_cast<ObjectId>(id.get<long long>());
+      if (!ids.insert(m.id).second) throw InputError(object, "id", "is a duplicate (ids are unique across buildings and meshes)");
+      if (auto n = jm.find("name"); n != jm.end()) {
+        if (!n->is_string()) throw InputError(object, "name", "must be a string");
+        m.name = *n;
+      }
+      const json& vs = member(jm, "vertices", object);
+      if (!vs.is_array()) throw InputError(object, "vertices", "must be an array of [x, y, z] triples");
+      if (vs.size() > kMaxMeshVertices) throw InputError(object, "vertices", "has more than 50,000,000 entries");
+      m.vertices.reserve(vs.size());
+      for (std::size_t k = 0; k < vs.size(); ++k) {
+        const std::string field = "vertices[" + std::to_string(k) + "]";
+        if (!vs[k].is_array() || vs[k].size() != 3) throw InputError(object, field, "must be [x, y, z]");
+        m.vertices.push_back({finite_number(vs[k][0], object, field + "[0]"), finite_number(vs[k][1], object, field + "[1]"),
+                              finite_number(vs[k][2], object, field + "[2]")});
+      }
+      const json& ts = member(jm, "triangles", object);
+      if (!ts.is_array()) throw InputError(object, "triangles", "must be an array of [i, j, k] index triples");
+      m.triangles.reserve(ts.size());
+      for (std::size_t k = 0; k < ts.size(); ++k) {
+        const std::string field = "triangles[" + std::to_string(k) + "]";
+        if (!ts[k].is_array() || ts[k].size() != 3) throw InputError(object, field, "must be [i, j, k]");
+        std::array<std::uint32_t, 3> t{};
+        for (int c = 0; c < 3; ++c) {
+          if (!ts[k][c].is_number_unsigned() || ts[k][c].get<std::uint64_t>() > 0xFFFFFFFFULL)
+            throw InputError(object, field, "indices must be integers in [0, 2^32)");
+          t[c] = static_cast<std::uint32_t>(ts[k][c].get<std::uint64_t>());
+        }
+        m.triangles.push_back(t);
+      }
+      validate_and_finish(m);
+      scene.meshes.push_back(std::move(m));
+    }
+  }
   rebase_if_far(scene);
   return scene;
 }
@@ -153,7 +239,7 @@ Scene scene_from_json_text(const std::string& text) {
 std::string scene_to_json_text(const Scene& scene) {
   json doc;
   doc["format"] = "cullcheck-scene";
-  doc["version"] = 1;
+  doc["version"] = scene.meshes.empty() ? 1 : 2;
   doc["provenance"] = {{"generator", scene.provenance.generator},
                        {"seed", scene.provenance.seed},
                        {"parameters", json::parse(scene.provenance.parameters_json)}};
@@ -166,6 +252,21 @@ std::string scene_to_json_text(const Scene& scene) {
   }
   // Coordinates are written in world space (origin added back), so no "origin" is needed.
   doc["buildings"] = std::move(buildings);
+  if (!scene.meshes.empty()) {
+    json meshes = json::array();
+    for (const MeshObject& m : scene.meshes) {
+      json vs = json::array();
+      for (Vec3 v : m.vertices) vs.push_back({number(v.x + scene.origin.x), number(v.y + scene.origin.y), number(v.z)});
+      json ts = json::array();
+      for (const auto& t : m.triangles) ts.push_back({t[0], t[1], t[2]});
+      json jm = {{"id", m.id}};
+      if (!m.name.empty()) jm["name"] = m.name;
+      jm["vertices"] = std::move(vs);
+      jm["triangles"] = std::move(ts);
+      meshes.push_back(std::move(jm));
+    }
+    doc["meshes"] = std::move(meshes);
+  }
   return doc.dump() + "\n";
 }
 
@@ -182,10 +283,22 @@ void write_scene_file(const Scene& scene, const std::string& path) { write_text_
 namespace {
 
 json camera_json(const Camera& c) {
-  return {{"position", {number(c.position.x), number(c.position.y), number(c.position.z)}},
-          {"yaw", number(c.yaw)},   {"pitch", number(c.pitch)}, {"roll", number(c.roll)},
-          {"hfov", number(c.hfov)}, {"vfov", number(c.vfov)},   {"near", number(c.near)},
-          {"far", number(c.far)}};
+  json j = {{"position", {number(c.position.x), number(c.position.y), number(c.position.z)}},
+            {"yaw", number(c.yaw)},
+            {"pitch", number(c.pitch)},
+            {"roll", number(c.roll)}};
+  if (c.orthographic()) {
+    j["projection"] = "orthographic";
+    j["ortho_width"] = number(c.ortho_width);
+    j["ortho_height"] = number(c.ortho_height);
+  } else {
+    j["hfov"] = number(c.hfov);
+    j["vfov"] = number(c.vfov);
+  }
+  j["near"] = number(c.near);
+  j["far"] = number(c.far);
+  if (c.width > 0) j["resolution"] = {c.width, c.height};
+  return j;
 }
 
 Camera camera_from(const json& j, const std::string& object) {
@@ -195,10 +308,52 @@ Camera camera_from(const json& j, const std::string& object) {
   c.position = {finite_number(p[0], object, "position[0]"), finite_number(p[1], object, "position[1]"),
                 finite_number(p[2], object, "position[2]")};
   auto optional = [&](const char* key, double& field) {
-    if (auto it = j.find(key); it != j.end()) field = finite_number(*it, object, key);
+    if (auto it = j.find(key); it == j.end()) return false;
+    else field = finite_number(*it, object, key);
+    return true;
   };
   optional("yaw", c.yaw), optional("pitch", c.pitch), optional("roll", c.roll);
-  optional("hfov", c.hfov), optional("vfov", c.vfov), optional("near", c.near), optional("far", c.far);
+  optional("near", c.near), optional("far", c.far);
+  if (auto it = j.find("projection"); it != j.end()) {
+    if (*it == "orthographic") c.projection = Projection::orthographic;
+    else if (*it != "perspective") throw InputError(object, "projection", "must be \"perspective\" or \"orthographic\"");
+  }
+  if (auto it = j.find("resolution"); it != j.end()) {
+    if (!it->is_array() || it->size() != 2 || !(*it)[0].is_number_integer() || !(*it)[1].is_number_integer())
+      throw InputError(object, "resolution", "must be [width, height] in whole pixels");
+    const long long w = (*it)[0], h = (*it)[1];
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
+      throw InputError(object, "resolution", "each side must lie in [1, 8192] pixels");
+    c.width = static_cast<int>(w), c.height = static_cast<int>(h);
+  }
+  double aspect = 0.0;
+  const bool explicit_aspect = optional("aspect", aspect);
+  if (explicit_aspect && !(aspect > 0.0)) throw InputError(object, "aspect", "must be > 0");
+  if (!explicit_aspect && c.width > 0) aspect = double(c.width) / double(c.height);
+  // The across field, the up field and their ratio: any two give the third.
+  const bool ortho = c.orthographic();
+  const char* across = ortho ? "ortho_width" : "hfov";
+  const char* up = ortho ? "ortho_height" : "vfov";
+  if (ortho) c.ortho_width = c.ortho_height = 0.0;
+  double& a = ortho ? c.ortho_width : c.hfov;
+  double& b = ortho ? c.ortho_height : c.vfov;
+  const bool has_a = optional(across, a), has_b = optional(up, b);
+  if (has_a && has_b && explicit_aspect)
+    throw InputError(object, "aspect", std::string("give two of ") + across + ", " + up + " and aspect, not all three");
+  const bool panorama = !ortho && has_a && c.hfov >= kTwoPi;
+  if (aspect > 0.0 && !panorama && !(has_a && has_b)) {
+    if (ortho) {
+      if (!has_a && !has_b) throw InputError(object, "ortho_width", "an orthographic camera needs ortho_width or ortho_height");
+      if (has_a) b = a / aspect;
+      else a = b * aspect;
+    } else if (has_b && !has_a) {
+      a = 2.0 * std::atan(std::tan(b / 2) * aspect);
+    } else {
+      b = 2.0 * std::atan(std::tan(a / 2) / aspect);
+    }
+  } else if (ortho && !(has_a && has_b)) {
+    throw InputError(object, has_a ? up : across, "an orthographic camera needs ortho_width and ortho_height (or one and an aspect)");
+  }
   validate(c, object);
   return c;
 }

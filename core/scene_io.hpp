@@ -4,10 +4,22 @@
 //   {"format": "cullcheck-scene", "version": 1,
 //    "provenance": {"generator": "...", "seed": N, "parameters": {...}},
 //    "origin": [x, y],                      // optional, world offset of local coordinates
-//    "buildings": [{"id": N, "height": h, "footprint": [[x, y], ...]}, ...]}
+//    "buildings": [{"id": N, "height": h, "footprint": [[x, y], ...]}, ...],
+//    "meshes": [{"id": N, "name": "...", "vertices": [[x, y, z], ...],   // version 2 only
+//                "triangles": [[i, j, k], ...]}, ...]}
 // Footprints are implicitly closed (a repeated closing vertex is dropped); clockwise rings are
-// reversed to counter-clockwise. Anything else wrong raises InputError naming building and field.
-// Writing is deterministic: the same scene gives byte-identical text.
+// reversed to counter-clockwise. Ids are unique across buildings and meshes. Version 1 holds
+// buildings only; a scene with mesh objects is written as version 2 (so a reader that knows only
+// version 1 refuses it instead of silently dropping its meshes). Anything else wrong raises
+// InputError naming the object and field. Writing is deterministic: the same scene gives
+// byte-identical text.
+//
+// Camera JSON: {"position": [x, y, z], "yaw", "pitch", "roll", "hfov", "vfov", "near", "far",
+//  "projection": "perspective" | "orthographic", "ortho_width", "ortho_height",
+//  "resolution": [width, height], "aspect": width / height}, all but position optional.
+// "aspect" (read only) derives the missing one of hfov/vfov (ortho_width/ortho_height); without
+// it, a given resolution's width / height does (square pixels). Giving both fields and an
+// aspect is an error.
 #pragma once
 
 #include <iosfwd>
@@ -23,6 +35,8 @@ inline constexpr std::size_t kMaxBuildings = 20'000'000;
 inline constexpr std::size_t kMaxFootprintVertices = 4096;
 inline constexpr double kMaxCoordinate = 1.0e9;   // metres, before rebasing
 inline constexpr double kMaxHeight = 1.0e4;       // metres
+inline constexpr std::size_t kMaxMeshVertices = 50'000'000;  // per mesh object
+inline constexpr std::size_t kMaxMeshes = 20'000'000;
 // Scenes whose bounding box lies farther than this from the origin are rebased on load.
 inline constexpr double kRebaseThreshold = 1.0e5;
 
@@ -34,6 +48,11 @@ void write_scene_file(const Scene& scene, const std::string& path);
 // Validates and normalises one building in place (orientation, closing vertex), then fills its
 // prisms and bounds. Used by the reader and by generators, so both obey the same rules.
 void validate_and_finish(Building& b);
+// Validates one mesh object (finite coordinates within the limits, indices in range, at least one
+// triangle) and fills its bounds. Triangles of zero area (in double precision) are an error, or,
+// with `drop_degenerate`, removed and counted (importers of glTF and OBJ, whose files often hold
+// them: they cannot be seen, so dropping them changes no visible set).
+std::size_t validate_and_finish(MeshObject& m, bool drop_degenerate = false);
 // A validated building whose footprint is the axis-aligned rectangle [x0, x1] x [y0, y1].
 Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height);
 // Moves every coordinate so the scene's centre sits near (0, 0) when it is far from the origin.

@@ -1,5 +1,6 @@
 #include "engine/method.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "engine/delta_horizon/guarded_delta_horizon.hpp"
@@ -21,9 +22,27 @@ std::invalid_argument unknown(std::string_view kind, std::string_view name, cons
 
 }  // namespace
 
+std::string CullingMethod::unsupported_camera(const Camera& camera) const {
+  if (camera.orthographic())
+    return "orthographic camera: " + name() + " builds its horizon from one eye point; only frustum culling and "
+           "outside subjects take orthographic cameras";
+  return "";
+}
+
+std::string method_unavailable_reason(std::string_view name, const Scene& scene) {
+  if (name == "frustum" || scene.prisms_only()) return "";
+  return "the scene holds " + std::to_string(scene.meshes.size()) + " mesh object(s) that are not vertical prisms; " +
+         std::string(name) + " models every object as convex vertical prisms (2.5D), so only the oracle, frustum " +
+         "culling and outside subjects run on it";
+}
+
 std::vector<std::string> method_names() { return {"frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded"}; }
 
 std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& scene, const MethodOptions& options) {
+  if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
+    const auto names = method_names();
+    if (std::find(names.begin(), names.end(), name) != names.end()) throw std::invalid_argument("method " + std::string(name) + ": " + why);
+  }
   if (name == "frustum") return std::make_unique<ViewFrustumCulling>(scene, options);
   if (name == "oh_is") return std::make_unique<ImageSpaceHorizonCulling>(scene, options);
   if (name == "oh_os_thesis") return std::make_unique<ObjectSpaceHorizonCulling>(scene, ShadowRule::thesis, options);
@@ -48,6 +67,11 @@ std::vector<std::string> region_method_names() {
 
 std::unique_ptr<RegionCullingMethod> make_region_method(std::string_view name, const Scene& scene,
                                                         const MethodOptions& options) {
+  if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
+    const auto names = region_method_names();
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw std::invalid_argument("region method " + std::string(name) + ": " + why);
+  }
   if (name == "shrink_former") return std::make_unique<FootprintShrinking>(scene, options);
   if (name == "shrink_adjustable_thesis") return std::make_unique<PublishedShadowShrinking>(scene, options);
   if (name == "shrink_adjustable_conservative") return std::make_unique<CertifiedShadowShrinking>(scene, options);

@@ -47,6 +47,11 @@ class CullingMethod {
   // True when a result depends on earlier queries (ΔH carries its horizon from frame to frame):
   // such a method's failure replays only along the path that led to it.
   virtual bool incremental() const { return false; }
+  // Why this method cannot answer for `camera` (empty when it can). Methods built on an
+  // occlusion horizon work from one eye point, so the default refuses orthographic cameras;
+  // frustum culling and outside subjects take every camera. A caller skips such a frame and
+  // says so (reports count it) rather than asking.
+  virtual std::string unsupported_camera(const Camera& camera) const;
   virtual CullResult cull(const Camera& camera) = 0;
 };
 
@@ -97,7 +102,11 @@ class RegionCullingMethod {
 
 // Names accepted by make_method, in report order.
 std::vector<std::string> method_names();
-// Throws std::invalid_argument naming the method when it is unknown.
+// Why the named method (point or region) cannot run on `scene` (empty when it can): every method
+// but frustum culling models objects as convex vertical prisms, so it needs a 2.5D scene
+// (Scene::prisms_only). Reports list the methods skipped and this reason.
+std::string method_unavailable_reason(std::string_view name, const Scene& scene);
+// Throws std::invalid_argument naming the method when it is unknown or unavailable on `scene`.
 std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& scene, const MethodOptions& options = {});
 // The same for from-region methods (engine/shrinking/).
 std::vector<std::string> region_method_names();

@@ -268,6 +268,8 @@ Exact2dApplicability check_exact_2d(const Scene& scene, const Camera& camera) {
   } catch (const InputError& e) {
     return {false, e.what()};
   }
+  if (!scene.prisms_only()) return {false, "the scene holds mesh objects (not 2.5D)"};
+  if (camera.orthographic()) return {false, "camera is orthographic"};
   if (!level(camera)) return {false, "camera is not level (pitch and roll must be 0)"};
   const double z = camera.position.z;
   for (const Building& b : scene.buildings)

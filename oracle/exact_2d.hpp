@@ -46,6 +46,7 @@ struct Exact2dApplicability {
   std::string reason;
 };
 // The conditions (each is needed by the argument in exact_2d.cpp):
+//  0. the scene is 2.5D (no mesh objects) and the camera is not orthographic;
 //  1. the camera is level (pitch = roll = 0) or omnidirectional;
 //  2. every building is taller than the eye, and the eye is strictly outside every footprint;
 //  3. far lies beyond the scene (every building's box is within the far bound) and, for a

@@ -33,6 +33,10 @@ CullResult ViewFrustumCulling::cull(const Camera& camera) {
       if (volume.may_intersect(b.bounds)) result.pvs.push_back(b.id);
     }
   }
+  for (const MeshObject& m : scene_.meshes) {
+    ++result.stats.buildings_tested;
+    if (volume.may_intersect(m.bounds)) result.pvs.push_back(m.id);
+  }
   std::sort(result.pvs.begin(), result.pvs.end());
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;

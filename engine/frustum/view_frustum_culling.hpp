@@ -14,6 +14,7 @@ class ViewFrustumCulling final : public CullingMethod {
   explicit ViewFrustumCulling(const Scene& scene, const MethodOptions& options = {});
   std::string name() const override { return "frustum"; }
   bool claims_conservative() const override { return true; }
+  std::string unsupported_camera(const Camera& /*camera*/) const override { return ""; }
   CullResult cull(const Camera& camera) override;
 
  private:
