@@ -1,0 +1,49 @@
+// cullcheck cull: one engine method for a camera or along a path, its PVS as JSON lines.
+#include <iostream>
+#include <memory>
+
+#include "apps/cullcheck/flags.hpp"
+#include "apps/cullcheck/subcommands.hpp"
+#include "core/errors.hpp"
+#include "core/scene_io.hpp"
+
+namespace cullcheck::cli {
+
+Runner add_cull(CLI::App& app) {
+  struct Flags {
+    SceneFlags scene;
+    MethodFlags tuning;
+    std::string method = "oh_os_conservative", camera, path;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* sub = app.add_subcommand("cull", "Run one engine method for a camera and print its PVS as JSON");
+  f->scene.add(*sub);
+  f->tuning.add(*sub);
+  sub->add_option("--method", f->method, "Engine method")->capture_default_str();
+  auto* camera = sub->add_option("--camera", f->camera, "Camera as JSON (scene-local coordinates)");
+  auto* path = sub->add_option("--path", f->path, "Camera path file: prints one JSON line per frame");
+  camera->excludes(path);
+  return [f] {
+    const Scene scene = f->scene.source.load();
+    auto method = make_method(f->method, scene, f->tuning.options);
+    if (f->camera.empty() && f->path.empty())
+      throw InputError("command line", "camera", "give a camera (--camera JSON) or a path (--path FILE)");
+    std::vector<Camera> cameras;
+    if (!f->path.empty()) {
+      cameras = path_from_json_text(read_text_file(f->path)).frames;
+    } else {
+      cameras.push_back(camera_from_json_text(f->camera));
+    }
+    for (std::size_t frame = 0; frame < cameras.size(); ++frame) {
+      if (const std::string why = method->unsupported_camera(cameras[frame]); !why.empty())
+        throw InputError(f->path.empty() ? "camera" : "path frame " + std::to_string(frame), "projection", why);
+      nlohmann::json out = pvs_json(method->cull(cameras[frame]));
+      out["method"] = f->method;
+      if (!f->path.empty()) out["frame"] = frame;
+      std::cout << out.dump() << "\n";
+    }
+    return 0;
+  };
+}
+
+}  // namespace cullcheck::cli

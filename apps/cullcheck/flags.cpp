@@ -1,0 +1,197 @@
+#include "apps/cullcheck/flags.hpp"
+
+#include <algorithm>
+#include <thread>
+
+#include "core/errors.hpp"
+#include "core/scene_io.hpp"
+#include "engine/shrinking/view_cell.hpp"
+#include "engine/vbaoi/navigation_graph.hpp"
+#include "generators/camera_paths.hpp"
+#include "oracle/oracle.hpp"
+#include "reports/verification.hpp"
+
+namespace cullcheck::cli {
+
+void SceneFlags::add(CLI::App& app) {
+  app.add_option("--generator", source.generator,
+                 "City generator (manhattan, plaza, default, scatter, irregular, thesis, kept)")
+      ->capture_default_str();
+  app.add_option("--seed", source.seed, "Generator seed")->capture_default_str();
+  app.add_option("--params", source.parameters_json, "Generator parameters as JSON, overlaid on its defaults")
+      ->capture_default_str();
+  app.add_option("--scene", source.file, "Read the scene from this JSON file instead of generating it");
+}
+
+void PathFlags::add(CLI::App& app, int default_frames) {
+  params = nlohmann::json{{"frames", default_frames}}.dump();
+  app.add_option("--path-kind", kind, "Camera path generator (street_walk, fly_through, moves)")->capture_default_str();
+  app.add_option("--path-seed", seed, "Camera path seed")->capture_default_str();
+  app.add_option("--path-params", params, "Camera path parameters as JSON")->capture_default_str();
+  app.add_option("--path", file, "Read the camera path from this JSON file instead");
+}
+
+std::string PathFlags::replay_flags() const {
+  if (!file.empty()) return "--path " + shell_quote(file);
+  return "--path-kind " + kind + " --path-seed " + std::to_string(seed) + " --path-params " + shell_quote(params);
+}
+
+CameraPath PathFlags::load(const Scene& scene) const {
+  if (!file.empty()) return path_from_json_text(read_text_file(file));
+  return generators::make_camera_path(kind, scene, seed, parse_json_flag(params, "path-params"));
+}
+
+nlohmann::json parse_json_flag(const std::string& text, const std::string& field) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("command line", field, std::string("is not valid JSON: ") + e.what());
+  }
+}
+
+void SamplingFlags::add(CLI::App& app) {
+  app.add_option("--spacing", sampling.spacing_m, "Oracle: surface sample spacing in metres")->capture_default_str();
+  app.add_option("--face-grid", sampling.face_grid, "Oracle: least grid intervals per face")->capture_default_str();
+  app.add_option("--frustum-resolution", sampling.frustum_resolution, "Oracle: stratified rays per image row")
+      ->capture_default_str();
+}
+
+void MethodFlags::add(CLI::App& app) {
+  app.add_option("--horizon-bins", options.horizon_bins, "Occlusion horizon bins over 360 degrees (power of two)")
+      ->capture_default_str();
+  app.add_option("--leaf-size", options.quadtree_leaf_size, "Most buildings in a quadtree leaf")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--delta-radius", options.delta_radius, "Guarded ΔH: plan radius (m) of the motion region a certificate covers")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 1e4));
+  app.add_option("--delta-height", options.delta_height, "Guarded ΔH: height range (m) of the motion region")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e4));
+  app.add_option("--delta-turn", options.delta_turn, "Guarded ΔH: turn (rad, |Δyaw|+|Δpitch|+|Δroll|) the region allows")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.5));
+}
+
+void RegionFlags::add(CLI::App& app, const std::string& default_methods) {
+  app.add_option("--region-placement", placement,
+                 "Where a new disc is centred when the walker leaves the old one: 'eye' (at the walker) or 'tiling' "
+                 "(the nearest centre of the hexagonal circle tiling, thesis Fig. 4.9d)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"eye", "tiling"}));
+  methods = default_methods;
+  app.add_option("--region-method", methods,
+                 "From-region methods, comma-separated, 'all' or 'none': each PVS serves the frames that stay in its region")
+      ->capture_default_str();
+  app.add_option("--region-radius", radius, "Radius (m) of a from-region PVS's disc (ε)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 1e4));
+  app.add_option("--region-turn", turn, "Turn (rad) a from-region PVS allows")->capture_default_str()->check(CLI::Range(0.0, 1.5));
+}
+
+void VbaoiFlags::add(CLI::App& app, const std::vector<std::uint32_t>& default_clients, const std::string& prefix) {
+  const auto name = [&](const char* flag) { return "--" + prefix + flag; };
+  options.client_counts = default_clients;
+  // Results do not depend on the thread counts (nodes and rays are merged in order).
+  options.graph.threads = std::max(1u, std::thread::hardware_concurrency());
+  options.oracle_threads = static_cast<int>(options.graph.threads);
+  app.add_option(name("cell-size"), options.regions.cell_size,
+                 "Free-space cells (scenes without street cells): side of the grid no cell reaches across, metres")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1e5));
+  app.add_option(name("cell-margin"), options.regions.margin, "Free-space cells: open ground kept around the scene's bounds, metres")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e5));
+  app.add_option(name("graph-method"), options.graph.method,
+                 "From-region method for each node's PVSo and PVSn (one that tests passive targets)")
+      ->capture_default_str();
+  app.add_option(name("epsilon"), options.graph.epsilon, "ε (m) of the view-cell samples' discs")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-3, 1e3));
+  app.add_option(name("eye-height"), options.graph.eye_height, "Eye height (m) of every client and of the view cells' eyes")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-3, 1e3));
+  app.add_option(name("graph-sampling"), sampling, "View-cell sampling: boundary or tiled")->capture_default_str();
+  app.add_option(name("pvs-n-symmetry"), symmetry,
+                 "An entry only one side's PVSn lists: dropped (intersection: each side alone is conservative) or "
+                 "mirrored (union)")
+      ->capture_default_str();
+  app.add_option(name("graph-threads"), options.graph.threads, "Threads computing the graph's nodes")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 256u));
+  app.add_option(name("clients"), options.client_counts, "Client counts, comma-separated (one simulation each)")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 100000u));
+  auto& s = options.simulation;
+  app.add_option(name("sim-seed"), s.seed, "Simulation seed (walks, join times, network draws)")->capture_default_str();
+  app.add_option(name("duration"), s.duration, "Simulated seconds")->capture_default_str();
+  app.add_option(name("tick"), s.tick, "Seconds between pose updates")->capture_default_str();
+  app.add_option(name("latency"), s.latency, "One-way latency (s) client <-> server")->capture_default_str();
+  app.add_option(name("jitter"), s.jitter, "Extra latency, uniform in [0, jitter) seconds")->capture_default_str();
+  app.add_option(name("loss"), s.loss, "Probability that a message is lost")->capture_default_str();
+  app.add_option(name("retry-timeout"), s.retry_timeout, "Seconds before an unanswered control message is resent")
+      ->capture_default_str();
+  app.add_option(name("join-window"), s.join_window, "Clients join at seeded times in [0, join window) seconds")
+      ->capture_default_str();
+  app.add_option(name("speed-min"), s.speed_min, "Slowest walking speed, m/s")->capture_default_str();
+  app.add_option(name("speed-max"), s.speed_max, "Fastest walking speed, m/s")->capture_default_str();
+  app.add_option(name("circular-radii"), s.circular_radii, "Radii (m) of the circular-AoI baselines, comma-separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_option(name("check-stride"), s.check_stride, "Check line of sight at every n-th tick")->capture_default_str();
+  app.add_option(name("oracle-threads"), options.oracle_threads, "Threads casting line-of-sight rays")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+}
+
+const VbaoiOptions& VbaoiFlags::resolved() {
+  options.graph.sampling = parse_cell_sampling(sampling);
+  options.graph.symmetry = parse_pvs_n_symmetry(symmetry);
+  vbaoi::validate(options.simulation);
+  return options;
+}
+
+std::vector<std::string> parse_methods(const std::string& list, const std::vector<std::string>& names) {
+  if (list == "all") return names;
+  if (list.empty() || list == "none") return {};
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = list.find(',', start);
+    out.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  for (const auto& m : out) {
+    if (std::find(names.begin(), names.end(), m) == names.end()) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw InputError("command line", "method", "unknown method '" + m + "' (known: " + known + ", all)");
+    }
+  }
+  return out;
+}
+
+nlohmann::json pvs_json(const CullResult& r) {
+  return {{"pvs", r.pvs},
+          {"pvs_size", r.pvs.size()},
+          {"cells_tested", r.stats.cells_tested},
+          {"buildings_tested", r.stats.buildings_tested},
+          {"horizon_nodes", r.stats.horizon_nodes},
+          {"occluders_applied", r.stats.occluders_applied},
+          {"cull_ms", r.stats.cull_ms}};
+}
+
+int check_from(const Scene& scene, const std::string& from_json, const oracle::SamplingOptions& sampling,
+               const std::vector<ObjectId>& pvs, const RegionCullingMethod& method, nlohmann::json& out) {
+  if (from_json.empty()) return 0;
+  oracle::OracleOptions options;
+  options.sampling = sampling;
+  const oracle::OracleAnswer seen = oracle::Oracle(scene).visible_set(camera_from_json_text(from_json, "from"), options);
+  const std::vector<ObjectId> missed = missing_from(seen.visible, pvs);
+  out["from"] = {{"oracle_model", seen.model}, {"witnessed", seen.visible.size()}, {"missed", missed}};
+  return !missed.empty() && method.claims_conservative() ? kExitGateFailed : 0;
+}
+
+}  // namespace cullcheck::cli

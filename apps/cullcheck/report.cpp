@@ -1,0 +1,195 @@
+// cullcheck report: the main job. Every method and the oracle along a path, the claims ledger,
+// optional sections (thesis Table 4.1, view cells, VbAoI, scaling, the ε sweep), report.json.
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "apps/cullcheck/flags.hpp"
+#include "apps/cullcheck/subcommands.hpp"
+#include "core/scene_io.hpp"
+#include "reports/claims.hpp"
+#include "reports/delta_claims.hpp"
+#include "reports/region_sweep.hpp"
+#include "reports/report.hpp"
+#include "reports/scaling.hpp"
+#include "reports/shrinking_claims.hpp"
+#include "reports/table_4_1.hpp"
+#include "reports/vbaoi.hpp"
+#include "reports/verification.hpp"
+#include "reports/view_cells.hpp"
+
+namespace cullcheck::cli {
+
+Runner add_report(CLI::App& app) {
+  struct Flags {
+    SceneFlags scene;
+    PathFlags path;
+    SamplingFlags sampling;
+    MethodFlags tuning;
+    RegionFlags regions;
+    std::string methods = "all", output = "report.json", benchmark_json;
+    std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
+    std::vector<double> region_sweep_radii;
+    ClaimSearchOptions claim_options;
+    std::vector<int> scaling_grids;
+    int scaling_frames = 1000;
+    bool table_41 = false, view_cells = false, vbaoi_section = false;
+    ViewCellOptions view_cell_options;
+    std::string view_cell_sampling = "boundary,tiled";
+    SceneSource vbaoi_city{"manhattan", 1, R"({"blocks_x":41,"blocks_y":41})", ""};
+    VbaoiFlags vbaoi;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* sub =
+      app.add_subcommand("report", "The main job: every method and the oracle along a path, the claims ledger, report.json");
+  f->scene.add(*sub);
+  f->path.add(*sub, 300);
+  f->sampling.add(*sub);
+  f->tuning.add(*sub);
+  f->regions.add(*sub, "all");
+  sub->add_option("--region-sweep", f->region_sweep_radii,
+                     "Also run every region method along the path at each of these disc radii (m), e.g. "
+                     "0.25,0.5,1,1.41,2,4: PVS size, frames each PVS serves and its cost, into report.json's \"region_sweep\"")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-6, 1e4));
+  sub->add_option("--method", f->methods, "Comma-separated methods, or 'all'")->capture_default_str();
+  sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
+  sub->add_option("--oracle-stride", f->oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
+  sub->add_option("--claim-scenes", f->claim_options.scenes, "Scenes searched per claim")->capture_default_str();
+  sub->add_option("--claim-seed", f->claim_options.seed, "Seed of the claim search")->capture_default_str();
+  sub->add_option("--scaling-grids", f->scaling_grids,
+                     "Also time the methods on thesis-layout cities of grid x grid buildings (e.g. 100,200,400,800: "
+                     "10k to 640k) along a street walk, into report.json's \"scaling\"")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 4000));
+  sub->add_option("--scaling-frames", f->scaling_frames, "Street-walk frames per city size for --scaling-grids")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  sub->add_flag("--table-4-1", f->table_41,
+                   "Also reproduce thesis Table 4.1 on its plaza-crossing walk (Methods 1-3 at 60 and 90 degrees, "
+                   "region radius --region-radius, oracle every --oracle-stride frames), into report.json's \"table_4_1\"");
+  sub->add_flag("--view-cells", f->view_cells,
+                   "Also compute the from-region PVS of every navigable region (street or free-space cell) with each region "
+                   "method and sampling, "
+                   "hold some cells to the oracle, into report.json's \"view_cells\"");
+  sub->add_option("--view-cell-epsilon", f->view_cell_options.epsilon, "ε (m) of the view cells' sample discs")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-3, 1e3));
+  sub->add_option("--view-cell-stride", f->view_cell_options.cell_stride, "Compute every n-th navigable region")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  sub->add_option("--view-cell-oracle-cells", f->view_cell_options.oracle_cells, "Street cells held to the oracle")
+      ->capture_default_str();
+  sub->add_option("--view-cell-sampling", f->view_cell_sampling, "Comma-separated: boundary, tiled")->capture_default_str();
+  sub->add_flag("--vbaoi", f->vbaoi_section,
+                   "Also VbAoI (thesis ch. 5) on its own city (--vbaoi-generator/-seed/-params; default a 41 x 41-block "
+                   "Manhattan grid of 10,086 buildings): the navigable-region graph, simulations of 10, 100 and 1,000 "
+                   "clients against broadcast, neighbours-only and circular AoI, into report.json's \"vbaoi\"");
+  sub->add_option("--vbaoi-generator", f->vbaoi_city.generator, "Generator of the VbAoI city")->capture_default_str();
+  sub->add_option("--vbaoi-seed", f->vbaoi_city.seed, "Seed of the VbAoI city")->capture_default_str();
+  sub->add_option("--vbaoi-params", f->vbaoi_city.parameters_json, "Parameters (JSON) of the VbAoI city")->capture_default_str();
+  f->vbaoi.add(*sub, {10, 100, 1000}, "vbaoi-");
+  sub->add_option("--benchmark-json", f->benchmark_json,
+                     "Fold this Google Benchmark JSON output (bench_culling --benchmark_format=json) into the report");
+  return [f] {
+    const Scene scene = f->scene.source.load();
+    if (f->view_cells) {  // bad view-cell input fails before the long run, not after it
+      f->view_cell_options.samplings.clear();
+      for (std::size_t start = 0; start <= f->view_cell_sampling.size();) {  // comma-separated names
+        const std::size_t comma = std::min(f->view_cell_sampling.find(',', start), f->view_cell_sampling.size());
+        f->view_cell_options.samplings.push_back(parse_cell_sampling(f->view_cell_sampling.substr(start, comma - start)));
+        start = comma + 1;
+      }
+    }
+    std::optional<Scene> vbaoi_scene;  // bad VbAoI input fails before the long run too
+    if (f->vbaoi_section) {
+      f->vbaoi.resolved();
+      f->vbaoi.options.graph.method_options = f->tuning.options;
+      vbaoi_scene = f->vbaoi_city.load();
+    }
+    const CameraPath path = f->path.load(scene);
+    VerificationOptions options;
+    options.oracle.sampling = f->sampling.sampling;
+    options.oracle_stride = f->oracle_stride;
+    options.path_replay_flags = f->path.replay_flags();
+    options.region_methods = parse_methods(f->regions.methods, region_method_names());
+    options.region_radius = f->regions.radius;
+    options.region_turn = f->regions.turn;
+    options.region_on_tiling = f->regions.placement == "tiling";
+    const std::vector<std::string> methods = parse_methods(f->methods);
+    std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
+              << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
+    const PathVerification v = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
+    f->claim_options.sampling = f->sampling.sampling;
+    ReportInputs in;
+    in.method_options = f->tuning.options;
+    in.scene = &scene;
+    in.source = f->scene.source;
+    in.path = &path;
+    in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
+    in.verification = &v;
+    in.claims = check_shadow_elevation_rule(f->claim_options);
+    for (ClaimCheck& c : check_image_space_pitch_roll(f->claim_options)) in.claims.push_back(std::move(c));
+    for (ClaimCheck& c : check_delta_horizon_claims(f->claim_options)) in.claims.push_back(std::move(c));
+    for (ClaimCheck& c : check_shrinking_claims(f->claim_options)) in.claims.push_back(std::move(c));
+    nlohmann::json document = build_report(in);
+    if (!f->region_sweep_radii.empty()) {
+      document["region_sweep"] =
+          region_radius_sweep(scene, path, options.region_methods.empty() ? region_method_names() : options.region_methods,
+                                  f->region_sweep_radii, f->regions.turn, options.region_on_tiling, f->tuning.options);
+      std::cout << region_sweep_table(document["region_sweep"]);
+    }
+    std::size_t section_violations = 0;
+    if (f->table_41) {
+      Table41Options t;
+      t.region_methods = options.region_methods;
+      t.radius = f->regions.radius;
+      t.oracle_stride = f->oracle_stride;
+      t.oracle.sampling = f->sampling.sampling;
+      document["table_4_1"] = table_4_1(t, f->tuning.options);
+      std::cout << table_4_1_text(document["table_4_1"]);
+      for (const auto& r : document["table_4_1"]["rows"])
+        if (r.value("claims_conservative", true)) section_violations += r["violations"].get<std::size_t>();
+    }
+    if (f->view_cells) {
+      f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;
+      f->view_cell_options.oracle.sampling = f->sampling.sampling;
+      document["view_cells"] = view_cell_report(scene, f->scene.source, f->view_cell_options, f->tuning.options);
+      std::cout << view_cell_table(document["view_cells"]);
+      for (const auto& r : document["view_cells"]["runs"])
+        if (r["claims_conservative"].get<bool>()) section_violations += r["violations"].get<std::size_t>();
+    }
+    if (vbaoi_scene) {
+      document["vbaoi"] = vbaoi_report(*vbaoi_scene, f->vbaoi_city, f->vbaoi.options);
+      std::cout << vbaoi_table(document["vbaoi"]);
+      section_violations += vbaoi_gate_violations(document["vbaoi"]);
+      for (ClaimCheck& c : vbaoi_claims(document["vbaoi"])) {
+        document["claims"].push_back(to_json(c));
+        in.claims.push_back(std::move(c));
+      }
+    }
+    if (!f->scaling_grids.empty()) {
+      ScalingOptions scaling;
+      scaling.grids = f->scaling_grids;
+      scaling.frames = f->scaling_frames;
+      document["scaling"] = run_scaling(scaling);
+      std::cout << scaling_table(document["scaling"]);
+    }
+    // The gate in the document says what the exit code says: sections' violations count too.
+    document["gate"]["section_violations"] = section_violations;
+    document["gate"]["passed"] = conservative_violations(v) == 0 && section_violations == 0;
+    if (!f->benchmark_json.empty())
+      document["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
+    write_text_file_atomically(f->output, document.dump(2) + "\n");
+    std::cout << summary_table(v);
+    for (const ClaimCheck& c : in.claims) {
+      std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
+                << c.violations << " violations)\n";
+      if (!c.holds) std::cout << "  counterexample: " << c.counterexample_replay << "\n";
+    }
+    std::cout << "wrote " << f->output << "\n";
+    return conservative_violations(v) == 0 && section_violations == 0 ? 0 : kExitGateFailed;
+  };
+}
+
+}  // namespace cullcheck::cli
