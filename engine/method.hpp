@@ -1,12 +1,15 @@
 // The one interface every culling method implements (conventions: "a thin, plain API").
 //
 // A method is built once for a scene (its preprocessing: quadtree, occluder lists, ...) and then
-// answers queries: a camera in, a potentially visible set (PVS: sorted building ids) and
-// statistics out. The CLI, the properties and the reports all go through this interface.
+// answers queries: a camera in, a potentially visible set (PVS: sorted object ids) and
+// statistics out. The CLI, the properties and the reports all go through this interface, and so
+// does an outside culling system under test (subjects/: a program over the subject protocol, or
+// its recorded per-frame visible sets): one more kind of method, not a parallel code path.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,7 +26,8 @@ struct CullStatistics {
   std::uint64_t occluders_applied = 0;  // CVP shadows merged into the horizon
   std::uint64_t items_skipped = 0;      // cells and buildings skipped untested (ΔH: known hidden)
   std::uint64_t guard_fires = 0;        // ΔH: 1 when this frame fell back to a full recompute
-  double cull_ms = 0.0;                 // wall time of this query
+  double cull_ms = 0.0;                 // wall time of this query (an outside subject's own figure when it sends one)
+  double protocol_ms = 0.0;             // outside subjects: time in the protocol (serialising, pipes, parsing)
 };
 
 struct CullResult {
@@ -47,6 +51,12 @@ class CullingMethod {
   // True when a result depends on earlier queries (ΔH carries its horizon from frame to frame):
   // such a method's failure replays only along the path that led to it.
   virtual bool incremental() const { return false; }
+  // Approximate methods that accept misdrawn pixels (oracle/pixel_oracle.hpp) give their budget
+  // per frame; conservative ones have none and must show 0.
+  virtual std::optional<std::uint64_t> pixel_error_budget() const { return std::nullopt; }
+  // Called before cull() with the frame's index along the path and its time in seconds, for
+  // methods that are told (outside subjects); built-in methods ignore it.
+  virtual void set_frame(std::size_t /*frame*/, double /*time_seconds*/) {}
   // Why this method cannot answer for `camera` (empty when it can). Methods built on an
   // occlusion horizon work from one eye point, so the default refuses orthographic cameras;
   // frustum culling and outside subjects take every camera. A caller skips such a frame and

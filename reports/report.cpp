@@ -3,8 +3,10 @@
 #include <sys/utsname.h>
 
 #include <cstdio>
+#include <numeric>
 #include <thread>
 
+#include "reports/gate_verdict.hpp"
 #include "reports/statistics.hpp"
 
 #ifndef CULLCHECK_BUILD_TYPE
@@ -92,8 +94,11 @@ nlohmann::json build_report(const ReportInputs& in) {
                      {"seed", scene.provenance.seed},
                      {"parameters", json::parse(scene.provenance.parameters_json)},
                      {"building_count", scene.buildings.size()},
+                     {"mesh_count", scene.meshes.size()},
+                     {"model", scene.prisms_only() ? "2.5D: every object a vertical prism" : "mesh objects: not every object is a vertical prism"},
+                     {"origin", {scene.origin.x, scene.origin.y}},
                      {"triangle_count", scene.triangle_count()},
-                     {"bounds", scene.buildings.empty() ? json(nullptr) : json{{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}}},
+                     {"bounds", scene.object_count() == 0 ? json(nullptr) : json{{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}}},
                      {"replay_flags", in.source.replay_flags()}};
   report["path"] = {{"kind", in.path->kind},
                     {"seed", in.path->seed},
@@ -146,8 +151,51 @@ nlohmann::json build_report(const ReportInputs& in) {
                     {"violations", r.violation_count},
                     {"frames_with_violations", r.frames_with_violations},
                     {"violation_replays", violations}});
+    json& run = runs.back();
+    run["outside"] = r.outside;
+    run["frames_skipped"] = r.frames_skipped;
+    if (r.frames_skipped > 0) run["skip_reason"] = r.skip_reason;
+    if (r.pixel_error_budget) run["pixel_error_budget"] = *r.pixel_error_budget;
+    if (r.outside) {
+      const double protocol_seconds = std::accumulate(r.protocol_ms.begin(), r.protocol_ms.end(), 0.0) / 1000.0;
+      run["protocol"] = {{"ms_median", median(r.protocol_ms)},
+                         {"ms_p95", percentile(r.protocol_ms, 95)},
+                         {"seconds", protocol_seconds},
+                         {"oracle_seconds", o.seconds + v.pixels.seconds},
+                         {"fraction_of_oracle_seconds", ratio(protocol_seconds, o.seconds + v.pixels.seconds)}};
+      json equal = json::object();
+      for (const auto& [method, frames] : r.frames_equal_to) equal[method] = frames;
+      run["frames_pvs_equal_to"] = equal;
+    }
+    if (v.pixels.enabled) {
+      json over = json::array();
+      for (const Violation& x : r.over_budget)
+        over.push_back({{"frame", x.frame}, {"worst_object", x.building}, {"replay", x.replay}});
+      run["pixels"] = {{"frames_checked", r.misdrawn_pixels.size()},
+                       {"misdrawn_pixels", r.misdrawn_total},
+                       {"misdrawn_pixels_mean", mean(r.misdrawn_pixels)},
+                       {"error_frames", r.error_frames},
+                       {"largest_blob", r.largest_blob},
+                       {"most_misdrawn_in_a_frame", r.most_misdrawn},
+                       {"frames_over_budget", r.frames_over_budget},
+                       {"over_budget_replays", over}};
+    }
   }
   report["runs"] = runs;
+  report["frames_run"] = v.frames_run;
+  if (v.aborted)
+    report["aborted"] = {{"method", v.aborted->method},
+                         {"frame", v.aborted->frame < 0 ? json("handshake") : json(v.aborted->frame)},
+                         {"kind", v.aborted->kind},
+                         {"message", v.aborted->message}};
+  json skipped = json::array();
+  for (const auto& [method, why] : v.skipped_methods) skipped.push_back({{"method", method}, {"reason", why}});
+  report["skipped_methods"] = skipped;
+  report["pixel_oracle"] = {{"enabled", v.pixels.enabled},
+                            {"frames_checked", v.pixels.frames},
+                            {"rays", v.pixels.rays},
+                            {"seconds", v.pixels.seconds},
+                            {"rays_per_second", ratio(static_cast<double>(v.pixels.rays), v.pixels.seconds)}};
   report["speedups"] = speedups_json(v);
   json regions = json::array();
   for (const RegionRun& r : v.regions) {
@@ -176,8 +224,7 @@ nlohmann::json build_report(const ReportInputs& in) {
   json claims = json::array();
   for (const ClaimCheck& c : in.claims) claims.push_back(to_json(c));
   report["claims"] = claims;
-  report["gate"] = {{"conservative_violations", conservative_violations(v)},
-                    {"passed", conservative_violations(v) == 0}};
+  report["gate"] = gate_verdict(v, in.source.replay_flags(), in.thresholds).to_json();
   return report;
 }
 

@@ -12,6 +12,7 @@
 #include "core/scene.hpp"
 #include "engine/method.hpp"
 #include "reports/claims.hpp"
+#include "reports/gate_verdict.hpp"
 #include "reports/scene_source.hpp"
 #include "reports/verification.hpp"
 
@@ -27,6 +28,7 @@ struct ReportInputs {
   MethodOptions method_options;
   const PathVerification* verification = nullptr;
   std::vector<ClaimCheck> claims;
+  GateThresholds thresholds;
 };
 
 nlohmann::json build_report(const ReportInputs& in);

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/scene_io.hpp"
+#include "subjects/subject_error.hpp"
 
 namespace cullcheck {
 
@@ -75,26 +76,69 @@ struct ViolationTally {
 // are those of the frames its claim covers; a run whose method claims no checked frame keeps
 // every violation, reported but not gated (e.g. oh_os_thesis, or oh_is along a fly-through).
 // For methods whose claim does not depend on the camera this is the plain count either way.
+std::vector<MethodUnderTest> builtin_methods(const Scene& scene, const SceneSource& source, const std::vector<std::string>& names,
+                                             const MethodOptions& method_options, const VerificationOptions& options,
+                                             std::vector<std::pair<std::string, std::string>>* skipped) {
+  std::vector<MethodUnderTest> out;
+  for (const std::string& name : names) {
+    if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
+      if (skipped) skipped->emplace_back(name, why);
+      continue;
+    }
+    MethodUnderTest m;
+    m.method = make_method(name, scene, method_options);
+    const bool incremental = m.method->incremental() && !options.path_replay_flags.empty();
+    m.replay = [source, name, incremental, path_flags = options.path_replay_flags](std::size_t frame, const Camera& camera) {
+      if (incremental)
+        return "cullcheck verify " + source.replay_flags() + " " + path_flags + " --method " + name + "   # violation at frame " +
+               std::to_string(frame);
+      return replay_command(source, name, camera);
+    };
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,
                              const std::vector<std::string>& methods, const MethodOptions& method_options,
                              const VerificationOptions& options) {
+  std::vector<std::pair<std::string, std::string>> skipped;
+  std::vector<MethodUnderTest> engines = builtin_methods(scene, source, methods, method_options, options, &skipped);
+  PathVerification out = verify_path(scene, source, path, engines, method_options, options);
+  out.skipped_methods = std::move(skipped);
+  return out;
+}
+
+PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,
+                             std::vector<MethodUnderTest>& engines, const MethodOptions& method_options,
+                             const VerificationOptions& options) {
   PathVerification out;
-  std::vector<ViolationTally> all_frames(methods.size()), claimed_frames(methods.size());
-  std::vector<std::size_t> frames_claimed(methods.size(), 0);  // checked frames the claim covers
+  const std::size_t n = engines.size();
+  std::vector<ViolationTally> all_frames(n), claimed_frames(n);
+  std::vector<std::size_t> frames_claimed(n, 0);  // checked frames the claim covers
   out.oracle.density = options.oracle.sampling;
   out.oracle.oracle_stride = std::max<std::size_t>(1, options.oracle_stride);
-  std::vector<std::unique_ptr<CullingMethod>> engines;
-  for (const std::string& name : methods) {
-    engines.push_back(make_method(name, scene, method_options));
+  std::vector<std::size_t> builtin;  // runs an outside subject's PVS is compared with
+  for (std::size_t m = 0; m < n; ++m) {
     MethodRun run;
-    run.method = name;
-    run.claims_conservative = engines.back()->claims_conservative();
+    run.method = engines[m].method->name();
+    run.claims_conservative = engines[m].method->claims_conservative();
+    run.outside = engines[m].outside;
+    run.pixel_error_budget = engines[m].method->pixel_error_budget();
+    if (!run.outside) builtin.push_back(m);
     out.runs.push_back(std::move(run));
   }
+  for (std::size_t m = 0; m < n; ++m)
+    if (out.runs[m].outside)
+      for (std::size_t b : builtin) out.runs[m].frames_equal_to.emplace_back(out.runs[b].method, 0);
   std::vector<std::unique_ptr<RegionCullingMethod>> region_engines;
   std::vector<std::optional<ViewRegion>> current(options.region_methods.size());
   std::vector<std::vector<ObjectId>> region_pvs(options.region_methods.size());
   for (const std::string& name : options.region_methods) {
+    if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
+      out.skipped_methods.emplace_back(name, why);
+      continue;
+    }
     region_engines.push_back(make_region_method(name, scene, method_options));
     RegionRun run;
     run.method = name;
@@ -104,28 +148,56 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     run.on_tiling = options.region_on_tiling;
     out.regions.push_back(std::move(run));
   }
-  const std::size_t reference =
-      static_cast<std::size_t>(std::find(methods.begin(), methods.end(), options.reference_method) - methods.begin());
+  std::size_t reference = n;
+  for (std::size_t m = 0; m < n; ++m)
+    if (out.runs[m].method == options.reference_method) reference = m;
   const oracle::Oracle truth(scene);
   oracle::RayLog first_log;
+  const double frame_seconds = path.frames_per_second > 0 ? 1.0 / path.frames_per_second : 0.0;
   for (std::size_t frame = 0; frame < path.frames.size(); ++frame) {
     const Camera& camera = path.frames[frame];
-    std::vector<CullResult> results;
-    for (std::size_t m = 0; m < engines.size(); ++m) {
-      results.push_back(engines[m]->cull(camera));
+    const std::size_t index = options.first_frame + frame;  // the frame's number along the original path
+    // Every method answers before anything is recorded, so a subject failing at this frame
+    // leaves every run with the same frames.
+    std::vector<std::optional<CullResult>> results(n);
+    std::vector<std::string> unsupported(n);
+    std::size_t m = 0;
+    try {
+      for (; m < n; ++m) {
+        unsupported[m] = engines[m].method->unsupported_camera(camera);
+        if (!unsupported[m].empty()) continue;
+        engines[m].method->set_frame(index, static_cast<double>(index) * frame_seconds);
+        results[m] = engines[m].method->cull(camera);
+      }
+    } catch (const SubjectError& e) {
+      out.aborted = Abort{out.runs[m].method, e.frame(), SubjectError::kind_name(e.kind()), e.what()};
+      break;
+    }
+    out.frames_run = frame + 1;
+    for (m = 0; m < n; ++m) {
       MethodRun& run = out.runs[m];
-      const CullStatistics& s = results.back().stats;
+      if (!results[m]) {
+        if (run.frames_skipped++ == 0) run.skip_reason = unsupported[m];
+        continue;
+      }
+      const CullStatistics& s = results[m]->stats;
       run.cull_ms.push_back(s.cull_ms);
-      run.pvs_size.push_back(static_cast<double>(results.back().pvs.size()));
+      run.protocol_ms.push_back(s.protocol_ms);
+      run.pvs_size.push_back(static_cast<double>(results[m]->pvs.size()));
       run.totals.cells_tested += s.cells_tested;
       run.totals.buildings_tested += s.buildings_tested;
       run.totals.horizon_nodes += s.horizon_nodes;
       run.totals.occluders_applied += s.occluders_applied;
       run.totals.items_skipped += s.items_skipped;
       run.totals.guard_fires += s.guard_fires;
+      if (run.outside)
+        for (std::size_t k = 0; k < builtin.size(); ++k)
+          if (results[builtin[k]] && results[builtin[k]]->pvs == results[m]->pvs) ++run.frames_equal_to[k].second;
     }
+    const bool reference_answered = reference < n && results[reference].has_value();
     for (std::size_t m = 0; m < region_engines.size(); ++m) {
       RegionRun& run = out.regions[m];
+      if (camera.orthographic()) continue;  // a disc of eyes needs an eye point
       if (!current[m] || !region_holds(*current[m], camera)) {
         current[m] = ViewRegion{camera, options.region_radius, options.region_turn};
         if (options.region_on_tiling) {
@@ -137,12 +209,13 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         run.compute_ms.push_back(r.stats.cull_ms);
       }
       run.pvs_size.push_back(static_cast<double>(region_pvs[m].size()));
-      if (reference < engines.size()) run.point_pvs_size.push_back(static_cast<double>(results[reference].pvs.size()));
+      if (reference_answered) run.point_pvs_size.push_back(static_cast<double>(results[reference]->pvs.size()));
     }
-    if (reference < engines.size())
-      for (std::size_t m = 0; m < engines.size(); ++m) {
+    if (reference_answered)
+      for (std::size_t m = 0; m < n; ++m) {
+        if (!results[m]) continue;
         out.runs[m].compared_with_reference = true;
-        out.runs[m].frames_differing_from_reference += results[m].pvs != results[reference].pvs ? 1 : 0;
+        out.runs[m].frames_differing_from_reference += results[m]->pvs != results[reference]->pvs ? 1 : 0;
       }
     if (frame % out.oracle.oracle_stride != 0) continue;
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
@@ -156,13 +229,15 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     } else {
       ++out.oracle.frames_exact_2d;
     }
-    for (std::size_t m = 0; m < engines.size(); ++m) {
+    for (std::size_t m = 0; m < n; ++m) {
+      if (!results[m]) continue;
       MethodRun& run = out.runs[m];
-      run.checked_pvs_size.push_back(static_cast<double>(results[m].pvs.size()));
+      const std::vector<ObjectId>& pvs = results[m]->pvs;
+      run.checked_pvs_size.push_back(static_cast<double>(pvs.size()));
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
-      const bool claimed = engines[m]->claims_conservative_for(camera);
+      const bool claimed = engines[m].method->claims_conservative_for(camera);
       frames_claimed[m] += claimed ? 1 : 0;
-      const std::vector<ObjectId> missed = missing_from(answer.visible, results[m].pvs);
+      const std::vector<ObjectId> missed = missing_from(answer.visible, pvs);
       if (missed.empty()) continue;
       for (ViolationTally* tally : {&all_frames[m], claimed ? &claimed_frames[m] : nullptr}) {
         if (tally == nullptr) continue;
@@ -170,15 +245,11 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         ++tally->frames;
         for (ObjectId id : missed) {
           if (tally->kept.size() >= options.max_replays) break;
-          tally->kept.push_back(violation_of(frame, id, camera, answer,
-                                             engines[m]->incremental() && !options.path_replay_flags.empty()
-                                                 ? "cullcheck verify " + source.replay_flags() + " " +
-                                                       options.path_replay_flags + " --method " + run.method +
-                                                       "   # violation at frame " + std::to_string(frame)
-                                                 : replay_command(source, run.method, camera)));
+          tally->kept.push_back(violation_of(index, id, camera, answer, engines[m].replay(index, camera)));
         }
       }
     }
+    if (camera.orthographic()) continue;
     for (std::size_t m = 0; m < region_engines.size(); ++m) {
       RegionRun& run = out.regions[m];
       run.checked_pvs_size.push_back(static_cast<double>(region_pvs[m].size()));
@@ -190,11 +261,11 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       for (ObjectId id : missed) {
         if (run.violations.size() >= options.max_replays) break;
         run.violations.push_back(violation_of(
-            frame, id, camera, answer, region_replay_command(source, run.method, current[m]->camera, run.radius, run.turn, camera)));
+            index, id, camera, answer, region_replay_command(source, run.method, current[m]->camera, run.radius, run.turn, camera)));
       }
     }
   }
-  for (std::size_t m = 0; m < engines.size(); ++m) {
+  for (std::size_t m = 0; m < n; ++m) {
     MethodRun& run = out.runs[m];
     run.claims_conservative = run.claims_conservative || frames_claimed[m] > 0;
     ViolationTally& tally = run.claims_conservative ? claimed_frames[m] : all_frames[m];

@@ -1,9 +1,13 @@
-// Holds engine methods to the oracle along a camera path: every method culls every frame, the
-// oracle says what is visible, and every building the oracle sees but a method culled is a
-// violation with a one-line replay command.
+// Holds methods to the oracle along a camera path: every method culls every frame, the oracle
+// says what is visible, and every object the oracle sees but a method culled is a violation with
+// a one-line replay command. The methods are the engine's or outside subjects (subjects/): all
+// behind CullingMethod, held to the same checks.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +38,13 @@ struct VerificationOptions {
   // the nearest centre of the circle tiling (Fig. 4.9d, engine/shrinking/circle_tiling.hpp),
   // whose six neighbours a client can compute ahead.
   bool region_on_tiling = false;
+  // Also hold every checked frame to the pixel oracle (oracle/pixel_oracle.hpp): misdrawn pixels
+  // per method; approximate methods are judged by their pixel_error_budget. Always on when a
+  // method has a budget.
+  bool pixels = false;
+  // The index along the original path of the first camera given (`gate --frame N` checks one
+  // frame of a path): frames are numbered from it in results, replays and set_frame.
+  std::size_t first_frame = 0;
 };
 
 struct Violation {
@@ -45,9 +56,33 @@ struct Violation {
   std::string replay;         // `cullcheck verify ...` that reproduces it
 };
 
+// A method under test and the command that replays a failure at one of its frames.
+struct MethodUnderTest {
+  std::unique_ptr<CullingMethod> method;
+  std::function<std::string(std::size_t frame, const Camera& camera)> replay;
+  bool outside = false;  // an outside subject (its PVS is compared with every built-in method's)
+};
+
+// The engine's methods by name (replayed by `cullcheck verify`), skipping those that cannot
+// run on `scene` (method_unavailable_reason) into `skipped` as {name, reason}.
+std::vector<MethodUnderTest> builtin_methods(const Scene& scene, const SceneSource& source, const std::vector<std::string>& names,
+                                             const MethodOptions& method_options, const VerificationOptions& options,
+                                             std::vector<std::pair<std::string, std::string>>* skipped = nullptr);
+
+// Where a run stopped because an outside subject failed (crashed, hung, lied): every result
+// before `frame` is kept.
+struct Abort {
+  std::string method;
+  std::int64_t frame = -1;  // -1: during the handshake
+  std::string kind;         // SubjectError::kind_name
+  std::string message;
+};
+
 struct MethodRun {
   std::string method;
   bool claims_conservative = false;
+  bool outside = false;
+  std::optional<std::uint64_t> pixel_error_budget;  // approximate methods' misdrawn pixels per frame
   std::vector<double> cull_ms;          // every frame
   std::vector<double> pvs_size;         // every frame
   std::vector<double> checked_pvs_size;  // frames checked by the oracle
@@ -58,6 +93,20 @@ struct MethodRun {
   std::vector<Violation> violations;    // the first max_replays
   bool compared_with_reference = false;
   std::size_t frames_differing_from_reference = 0;  // frames whose PVS differs from the reference's
+  // Frames the method could not answer (CullingMethod::unsupported_camera), with the first reason.
+  std::size_t frames_skipped = 0;
+  std::string skip_reason;
+  std::vector<double> protocol_ms;  // every frame (outside subjects: time in the protocol)
+  // Outside subjects: frames whose PVS equals each built-in method's, by method name.
+  std::vector<std::pair<std::string, std::size_t>> frames_equal_to;
+  // The pixel oracle (VerificationOptions::pixels), over checked frames.
+  std::vector<double> misdrawn_pixels;  // per checked frame
+  std::uint64_t misdrawn_total = 0;
+  std::size_t error_frames = 0;         // checked frames with any misdrawn pixel
+  std::uint64_t largest_blob = 0;       // largest 4-connected blob of misdrawn pixels, any frame
+  std::uint64_t most_misdrawn = 0;      // the worst frame's misdrawn pixels
+  std::size_t frames_over_budget = 0;   // approximate methods: frames above pixel_error_budget
+  std::vector<Violation> over_budget;   // the first max_replays of them (building = the worst object)
 };
 
 struct RegionRun {
@@ -87,10 +136,21 @@ struct OracleSummary {
   std::size_t oracle_stride = 1;
 };
 
+struct PixelSummary {
+  bool enabled = false;
+  std::size_t frames = 0;
+  std::uint64_t rays = 0;
+  double seconds = 0.0;
+};
+
 struct PathVerification {
   std::vector<MethodRun> runs;
   std::vector<RegionRun> regions;
   OracleSummary oracle;
+  PixelSummary pixels;
+  std::vector<std::pair<std::string, std::string>> skipped_methods;  // {name, why}
+  std::size_t frames_run = 0;        // frames every method answered (the whole path unless aborted)
+  std::optional<Abort> aborted;
 };
 
 // The replay command for one camera, method and scene.
@@ -100,6 +160,11 @@ std::string replay_command(const SceneSource& source, const std::string& method,
 
 PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,
                              const std::vector<std::string>& methods, const MethodOptions& method_options,
+                             const VerificationOptions& options);
+// The same for any methods under test. A SubjectError from an outside subject stops the run at
+// that frame: the result holds every frame before it and says where and why (`aborted`).
+PathVerification verify_path(const Scene& scene, const SceneSource& source, const CameraPath& path,
+                             std::vector<MethodUnderTest>& methods, const MethodOptions& method_options,
                              const VerificationOptions& options);
 
 // Buildings in `visible` missing from `pvs` (both sorted).

@@ -18,5 +18,7 @@ Runner add_region(CLI::App& app);
 Runner add_cell(CLI::App& app);
 Runner add_vbaoi(CLI::App& app);
 Runner add_report(CLI::App& app);
+Runner add_gate(CLI::App& app);
+Runner add_fuzz(CLI::App& app);
 
 }  // namespace cullcheck::cli

@@ -1,0 +1,66 @@
+// cullcheck fuzz: RapidCheck drives small scenes and pathological camera paths into an outside
+// culling system, holds its answers to the oracle and shrinks the first failure to a small case,
+// written as a self-contained folder (scene, path, replay script, pictures). Exit 1 when a
+// counterexample was found, 0 when the budget passed.
+#include <iostream>
+#include <memory>
+
+#include "apps/cullcheck/flags.hpp"
+#include "apps/cullcheck/subcommands.hpp"
+#include "core/scene_io.hpp"
+#include "reports/fuzzing.hpp"
+
+namespace cullcheck::cli {
+
+Runner add_fuzz(CLI::App& app) {
+  struct Flags {
+    FuzzOptions fuzz;
+    SamplingFlags sampling;
+    std::string out = "cullcheck-counterexample", output;
+    bool no_pixels = false;
+  };
+  auto f = std::make_shared<Flags>();
+  CLI::App* sub = app.add_subcommand(
+      "fuzz", "Fuzz an outside culling system: seeded scenes (cities, walls with openings) and pathological camera paths "
+              "(viewport edges, lateral moves past thin walls, pitch/roll, orthographic, near plane) held to the oracle; "
+              "the first failure is shrunk and written as a folder that replays it. Exit 1 when one was found");
+  sub->add_option("--subject", f->fuzz.subject, "The subject's command line (run by /bin/sh -c; README, subject protocol)")->required();
+  sub->add_option("--budget", f->fuzz.budget, "Cases that must pass (RapidCheck's max_success)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000000));
+  sub->add_option("--seed", f->fuzz.seed, "Seed of the cases (the same seed draws the same cases)")->capture_default_str();
+  sub->add_option("--timeout", f->fuzz.frame_timeout, "Seconds the subject may take per frame")->capture_default_str();
+  sub->add_option("--hello-timeout", f->fuzz.hello_timeout, "Seconds the subject may take to load a scene")->capture_default_str();
+  sub->add_option("--out", f->out, "Folder for the minimal counterexample")->capture_default_str();
+  sub->add_option("--output,-o", f->output, "Also write the run's summary as JSON");
+  sub->add_option("--work-dir", f->fuzz.work_dir, "Folder for each case's scene files (default: a temporary one)");
+  sub->add_flag("--no-pixels", f->no_pixels, "Skip the pixel oracle for conservative subjects");
+  f->sampling.add(*sub);
+  return [f] {
+    f->fuzz.sampling = f->sampling.sampling;
+    f->fuzz.pixels = !f->no_pixels;
+    const FuzzResult r = fuzz_subject(f->fuzz);
+    std::cout << "fuzz " << r.subject_name << " (" << (r.ready.claim.conservative ? "conservative" : "approximate") << "), seed "
+              << f->fuzz.seed << ": " << r.cases << " cases";
+    for (const auto& [kind, n] : r.kinds) std::cout << (kind == r.kinds.begin()->first ? " (" : ", ") << kind << " " << n;
+    std::cout << (r.kinds.empty() ? "" : ")") << "\n";
+    nlohmann::json doc = fuzz_json(r);
+    int code = 0;
+    if (r.failure) {
+      const std::string replay = write_counterexample(r, f->fuzz, f->out);
+      std::cout << "FAILED after " << r.cases << " cases (" << r.seconds_to_failure << " s); shrunk in " << r.shrink_runs
+                << " more runs to " << r.failure->objects << " objects, " << r.failure->triangles << " triangles, "
+                << r.failure->minimal.path.frames.size() << " frames (" << r.failure->minimal.kind << ")\n"
+                << "  " << r.failure->message << "\n"
+                << "  counterexample: " << f->out << "/ (replay: sh " << f->out << "/replay.sh)\n";
+      doc["counterexample"] = f->out;
+      code = kExitGateFailed;
+    } else {
+      std::cout << "passed " << r.cases << " cases in " << r.seconds_total << " s\n";
+    }
+    if (!f->output.empty()) write_text_file_atomically(f->output, doc.dump(2) + "\n");
+    return code;
+  };
+}
+
+}  // namespace cullcheck::cli

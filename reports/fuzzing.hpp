@@ -1,0 +1,67 @@
+// Fuzzing an outside culling system (README "Fuzzing an outside program"): RapidCheck draws
+// small seeded scenes (cities, and mesh scenes with openings) and short camera paths of the
+// kinds real cullers get wrong (generators/fuzz_cases.hpp), each case is sent to a fresh run of
+// the subject over the subject protocol and held to the oracle like `cullcheck gate`, and the
+// first failure is shrunk to a small case. A failure is a miss by a subject that claims to be
+// conservative (or a misdrawn pixel), a frame above an approximate subject's pixel budget, or
+// the subject crashing, hanging or lying.
+//
+// The same seed and budget draw the same cases on every machine; the subject's own answers
+// decide the rest.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "generators/fuzz_cases.hpp"
+#include "oracle/sampling.hpp"
+#include "reports/verification.hpp"
+#include "subjects/protocol.hpp"
+
+namespace cullcheck {
+
+struct FuzzOptions {
+  std::string subject;        // command line, run by /bin/sh -c
+  int budget = 100;           // cases that must pass
+  std::uint64_t seed = 1;
+  double frame_timeout = 10.0;
+  double hello_timeout = 60.0;
+  oracle::SamplingOptions sampling;
+  std::string work_dir;       // each case's scene files go here (a temporary folder when empty)
+  bool pixels = true;         // hold every frame to the pixel oracle too
+};
+
+struct FuzzFailure {
+  generators::FuzzCase minimal;
+  std::string message;          // the check that failed, with the first violation
+  bool subject_error = false;   // crashed, hung or lied rather than culled wrongly
+  PathVerification verification;  // of the minimal case
+  std::size_t objects = 0, triangles = 0;
+};
+
+struct FuzzResult {
+  std::string subject_name;
+  protocol::Ready ready;
+  int cases = 0;                // cases run up to and including the first failure (all, when none failed)
+  int shrink_runs = 0;          // cases run while shrinking it
+  int shrinks_accepted = 0;     // of those, the smaller cases that still failed
+  double seconds_to_failure = 0.0, seconds_total = 0.0;
+  std::map<std::string, int> kinds;   // cases run by path kind: that the hard cases were reached
+  std::map<std::string, int> scenes;  // by scene generator
+  std::optional<FuzzFailure> failure;
+};
+
+// Throws SubjectError when the subject cannot even answer a hello for a one-building scene.
+FuzzResult fuzz_subject(const FuzzOptions& options);
+
+// The minimal counterexample as a self-contained folder: scene.json, scene.glb, path.json
+// (and camera.json for one frame), replay.sh (`cullcheck gate` on those files), case.json (what
+// failed, the scene's size, the time to find it) and the pictures map.png and frame.png.
+// Returns the replay command.
+std::string write_counterexample(const FuzzResult& result, const FuzzOptions& options, const std::string& dir);
+
+nlohmann::json fuzz_json(const FuzzResult& result);
+
+}  // namespace cullcheck

@@ -1,0 +1,42 @@
+#include "subjects/scene_files.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include "core/errors.hpp"
+#include "core/scene_io.hpp"
+
+namespace cullcheck {
+
+WorkDir::WorkDir(const std::string& path, bool keep) {
+  namespace fs = std::filesystem;
+  if (!path.empty()) {
+    std::error_code ec;
+    fs::create_directories(path, ec);
+    if (ec || !fs::is_directory(path)) throw InputError("folder " + path, "(folder)", "cannot be created");
+    path_ = fs::absolute(path).string();
+    return;
+  }
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/cullcheck-XXXXXX";
+  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder under " + pattern);
+  path_ = pattern;
+  remove_ = !keep;
+}
+
+WorkDir::~WorkDir() {
+  if (!remove_) return;
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+protocol::SceneFiles write_scene_files(const Scene& scene, const std::string& dir, const std::string& prefix) {
+  protocol::SceneFiles files;
+  files.json = std::filesystem::absolute(dir + "/" + prefix + ".json").string();
+  write_scene_file(scene, files.json);
+  return files;
+}
+
+}  // namespace cullcheck
