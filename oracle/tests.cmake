@@ -12,5 +12,6 @@ add_test(NAME oracle_test COMMAND oracle_test)
 
 if(TARGET benchmark::benchmark)
   add_executable(oracle_bench ${CMAKE_CURRENT_LIST_DIR}/bench_oracle.cpp)
-  target_link_libraries(oracle_bench PRIVATE cullcheck_oracle benchmark::benchmark cullcheck_warnings)
+    # The benchmark (not the oracle) uses the generators for the CLI's default city.
+  target_link_libraries(oracle_bench PRIVATE cullcheck_oracle cullcheck_generators benchmark::benchmark cullcheck_warnings)
 endif()
