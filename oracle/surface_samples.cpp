@@ -118,6 +118,16 @@ SurfaceSamples capped_samples(const Object& object, const SamplingOptions& optio
   SurfaceSamples s;
   s.spacing_m = options.spacing_m;
   s.points = samples_at(object, options, s.spacing_m);
+  if (s.points.size() <= options.max_samples_per_building) return s;
+  // The count never grows with the spacing, so when even the coarsest spacing the loop below can
+  // reach misses the cap, the loop would end there: go there at once (an object of many faces,
+  // e.g. an imported model, would otherwise be sampled dozens of times over).
+  double coarsest = s.spacing_m;
+  while (coarsest <= largest) coarsest *= 1.25;
+  if (coarsest != s.spacing_m) {
+    std::vector<Vec3> points = samples_at(object, options, coarsest);
+    if (points.size() > options.max_samples_per_building) return {std::move(points), coarsest, true};
+  }
   while (s.points.size() > options.max_samples_per_building && s.spacing_m <= largest) {
     s.capped = true;
     s.spacing_m *= 1.25;

@@ -114,6 +114,27 @@ TEST(SurfaceSamples, MeshTrianglesGetVerticesEdgePointsInsetCopiesAndABarycentri
   EXPECT_TRUE(capped.capped);
   EXPECT_LE(capped.points.size(), 200u);
   EXPECT_GT(capped.spacing_m, 0.5);
+
+  // 2,000 triangles (a 40 x 25 grid of 1 m squares) cannot fit 4,096 samples: every triangle is
+  // left at its minimum grid of 4 intervals, 12 boundary points, 12 inset copies and 3 interior
+  // nodes, at the first spacing beyond the mesh's 40 m extent.
+  std::vector<Vec3> v;
+  std::vector<std::array<std::uint32_t, 3>> t;
+  for (int y = 0; y <= 25; ++y)
+    for (int x = 0; x <= 40; ++x) v.push_back({double(x), double(y), 0.5 * ((x + y) % 2)});
+  for (std::uint32_t y = 0; y < 25; ++y)
+    for (std::uint32_t x = 0; x < 40; ++x) {
+      const std::uint32_t a = y * 41 + x;
+      t.push_back({a, a + 1, a + 42});
+      t.push_back({a, a + 42, a + 41});
+    }
+  const MeshObject terrain = mesh_object(7, v, t);
+  o = SamplingOptions{};
+  const SurfaceSamples many = surface_samples(terrain, o);
+  EXPECT_TRUE(many.capped);
+  EXPECT_EQ(many.points.size(), 2000u * 27u);
+  EXPECT_GT(many.spacing_m, 40.0);
+  EXPECT_LE(many.spacing_m, 40.0 * 1.25);
 }
 
 TEST(SurfaceSamples, HoldCornersEdgesInsetPointsAndRespectTheCap) {
