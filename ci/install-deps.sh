@@ -7,7 +7,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libembree-dev libtbb-dev
   librapidcheck-dev libbenchmark-dev libgtest-dev libgmock-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libspng-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -6,18 +6,21 @@ namespace cullcheck::oracle {
 
 TriangleMesh triangulate(const Scene& scene) {
   TriangleMesh mesh;
-  if (!scene.buildings.empty()) {
+  if (scene.object_count() > 0) {
     const Box3 box = scene.bounds();
     mesh.origin = {std::round((box.lo.x + box.hi.x) / 2), std::round((box.lo.y + box.hi.y) / 2), 0.0};
   }
-  mesh.vertices.reserve(4 * scene.triangle_count());
+  mesh.building_count = scene.buildings.size();
+  for (const Building& b : scene.buildings) mesh.object_ids.push_back(b.id);
+  for (const MeshObject& m : scene.meshes) mesh.object_ids.push_back(m.id);
+  mesh.vertices.reserve(3 * scene.triangle_count());
   mesh.triangles.reserve(scene.triangle_count());
   auto add_triangle = [&](Vec3 a, Vec3 b, Vec3 c, std::uint32_t owner) {
     const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
     mesh.vertices.push_back(a), mesh.vertices.push_back(b), mesh.vertices.push_back(c);
     mesh.triangles.push_back({base, base + 1, base + 2});
     mesh.owner_index.push_back(owner);
-    mesh.owner_id.push_back(scene.buildings[owner].id);
+    mesh.owner_id.push_back(mesh.object_ids[owner]);
   };
   // Vertices are not shared between triangles: Embree's watertight (robust) test needs equal
   // positions, not equal indices, and the same double always rounds to the same float.
@@ -36,6 +39,11 @@ TriangleMesh triangulate(const Scene& scene) {
       for (std::size_t k = 1; k + 1 < r.size(); ++k)
         add_triangle({r[0].x, r[0].y, b.height}, {r[k].x, r[k].y, b.height}, {r[k + 1].x, r[k + 1].y, b.height}, i);
     }
+  }
+  for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+    const MeshObject& m = scene.meshes[k];
+    const auto owner = static_cast<std::uint32_t>(scene.buildings.size() + k);
+    for (const auto& t : m.triangles) add_triangle(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], owner);
   }
   return mesh;
 }

@@ -1,10 +1,13 @@
 // The scene as one triangle mesh, the form the ray oracle hands to Embree.
 //
-// Each building contributes its walls (two triangles per footprint edge, z = 0 to height) and its
-// roof (each convex vertical prism's ring fanned from its first vertex: the prisms partition the
-// footprint with diagonals only, so the roof has exactly footprint.size() - 2 triangles). No
-// floor: nothing is seen from below the ground plane. Triangle i belongs to building
-// owner_index[i] (index into Scene::buildings), whose stable id is owner_id[i].
+// The scene's OBJECTS are its buildings followed by its mesh objects: object index k < building
+// count is Scene::buildings[k], any other is Scene::meshes[k - building count]. Each building
+// contributes its walls (two triangles per footprint edge, z = 0 to height) and its roof (each
+// convex vertical prism's ring fanned from its first vertex: the prisms partition the footprint
+// with diagonals only, so the roof has exactly footprint.size() - 2 triangles). No floor: nothing
+// is seen from below the ground plane. Each mesh object contributes its triangles as they are
+// (two-sided: Embree's triangles are hit from either side). Triangle i belongs to object
+// owner_index[i], whose stable id is owner_id[i] (= object_ids[owner_index[i]]).
 #pragma once
 
 #include <array>
@@ -23,8 +26,10 @@ struct TriangleMesh {
   Vec3 origin;
   std::vector<Vec3> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<std::uint32_t> owner_index;  // primID -> index into Scene::buildings
-  std::vector<ObjectId> owner_id;          // primID -> Building::id
+  std::vector<std::uint32_t> owner_index;  // primID -> object index (buildings, then meshes)
+  std::vector<ObjectId> owner_id;          // primID -> the object's id
+  std::vector<ObjectId> object_ids;        // object index -> id
+  std::size_t building_count = 0;          // objects [0, building_count) are buildings
 };
 
 TriangleMesh triangulate(const Scene& scene);

@@ -7,6 +7,8 @@
 //  - "ray_sampling_3d": Embree ray sampling otherwise. `visible` is the witnessed set, a lower
 //    bound of the true visible set at the stated sampling density; every member has a
 //    witness ray.
+// Pixel truth (pixels()): the id buffers of the full scene and of a PVS at the camera's
+// resolution, and the misdrawn pixels between them (pixel_oracle.hpp), on the same Embree scene.
 #pragma once
 
 #include <memory>
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "oracle/exact_2d.hpp"
+#include "oracle/pixel_oracle.hpp"
 #include "oracle/ray_oracle.hpp"
 
 namespace cullcheck::oracle {
@@ -49,11 +52,13 @@ class Oracle {
   OracleAnswer visible_set(const Camera& camera, const OracleOptions& options = {}, RayLog* log = nullptr) const;
 
   const RayOracle& rays() const { return rays_; }
+  const PixelOracle& pixels() const { return pixels_; }
   const ExactVisibility2d& exact_2d() const;
 
  private:
   const Scene& scene_;
   RayOracle rays_;
+  PixelOracle pixels_{rays_};  // after rays_, whose Embree scene it shares
   mutable std::once_flag exact_once_;
   mutable std::unique_ptr<ExactVisibility2d> exact_;
 };

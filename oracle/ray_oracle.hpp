@@ -1,13 +1,15 @@
 // Embree ray-sampling oracle (design: "Oracle", first bullet): a lower bound of the true
 // visible set in full 3D, for any camera.
 //
-// From the eye, rays are cast toward sample points on every candidate building's surface
-// (vertices, edge points, a grid on each face, and edge/corner points inset into the faces) and
-// over the whole view volume (a seeded jittered grid). A building is WITNESSED VISIBLE when some
-// ray's first hit lies on it and inside the view volume (ViewVolume::contains, tested on the
-// hit point recomputed in double precision on the hit triangle's plane). Rays start at the near
-// plane (geometry nearer than it is clipped, so it hides nothing) and end at the far plane, or
-// just beyond their sample point.
+// Rays are cast toward sample points on every candidate object's surface (buildings and mesh
+// objects whose boxes may meet the view volume: vertices, edge points, a grid on each face, and
+// edge/corner points inset into the faces) and over the whole view volume (a seeded jittered
+// grid). From the eye for perspective and omnidirectional cameras; for an orthographic camera
+// the rays are parallel to the view direction and each starts on the near plane in front of its
+// target (ray_plan.hpp). An object is WITNESSED VISIBLE when some ray's first hit lies on it and
+// inside the view volume (ViewVolume::contains, tested on the hit point recomputed in double
+// precision on the hit triangle's plane). Rays start at the near plane (geometry nearer than it
+// is clipped, so it hides nothing) and end at the far plane, or just beyond their sample point.
 //
 // Exactness: every witness is one concrete ray, kept so it can be replayed; it is exact up to
 // Embree's single-precision intersection (about 1e-7 of the scene's extent), which matters only
@@ -30,21 +32,25 @@
 
 namespace cullcheck::oracle {
 
+class EmbreeScene;  // embree_scene.hpp, internal to the oracle
+
 enum class RaySource : std::uint8_t {
-  surface_sample,  // aimed at a sample point on a candidate building
+  surface_sample,  // aimed at a sample point on a candidate object
   stratified,      // one jittered ray per cell of the image-plane (or sphere) grid
+  pixel,           // a primary ray through a pixel centre (pixel_oracle.hpp)
 };
 
-// One ray that proves a building visible; enough to replay and print it.
+// One ray that proves an object visible; enough to replay and print it.
 struct WitnessRay {
-  Vec3 origin;     // the eye, scene-local metres
+  Vec3 origin;     // where the ray starts, scene-local metres: the eye, or for an orthographic
+                   // camera a point on its near plane (sampling) or its eye plane (pixels)
   Vec3 direction;  // unit length
   double t_near = 0.0, t_far = 0.0;  // the ray's extent, metres along `direction`
   double t_hit = 0.0;                // first hit
   Vec3 hit_point;                    // origin + t_hit * direction, inside the view volume
   Vec3 target;                       // sample point aimed at, or origin + t_far * direction
   std::uint32_t triangle = 0;        // Embree primID in the oracle's mesh
-  ObjectId aimed_at = 0;             // for surface samples: the building the sample lies on
+  ObjectId aimed_at = 0;             // for surface samples: the object the sample lies on
   RaySource source = RaySource::surface_sample;
 
   friend bool operator==(const WitnessRay&, const WitnessRay&) = default;
@@ -56,8 +62,8 @@ struct OracleResult {
   std::vector<ObjectId> witnessed;          // sorted ids
   std::map<ObjectId, WitnessRay> witnesses;  // the first witnessing ray of each, in ray order
   std::uint64_t rays_cast = 0;
-  std::size_t candidates = 0;               // buildings whose box may meet the view volume
-  std::size_t capped_buildings = 0;         // candidates whose samples hit the per-building cap
+  std::size_t candidates = 0;               // objects whose box may meet the view volume
+  std::size_t capped_objects = 0;           // candidates whose samples hit the per-object cap
   double elapsed_seconds = 0.0;             // wall time of the whole query
   SamplingOptions density;                  // the density used (reports print it)
 
@@ -87,7 +93,7 @@ class RayOracle {
   // is appended to it.
   OracleResult witness(const Camera& camera, const SamplingOptions& options = {}, RayLog* log = nullptr) const;
 
-  // The building hit first by `ray` (re-cast through Embree), if any, and whether that hit lies
+  // The object hit first by `ray` (re-cast through Embree), if any, and whether that hit lies
   // in the view volume of `camera`. Used to check witnesses and to replay a failure.
   struct Replay {
     std::optional<ObjectId> hit;
@@ -101,7 +107,7 @@ class RayOracle {
   // threads. Gives the Embree-only rate to print next to OracleResult::rays_per_second().
   double bare_embree_rays_per_second(const RayLog& log, int threads = 1, double min_seconds = 0.2) const;
 
-  // Whether the segment from `a` to `b` is clear of every building (one Embree occlusion ray over
+  // Whether the segment from `a` to `b` is clear of every object (one Embree occlusion ray over
   // exactly that segment; exact up to single precision, so only a segment grazing a wall or roof
   // edge is in doubt). The VbAoI channel-grouping property's line of sight between avatar eyes.
   bool line_of_sight(Vec3 a, Vec3 b) const;
@@ -111,6 +117,8 @@ class RayOracle {
 
   const TriangleMesh& mesh() const;
   const Scene& scene() const;
+  // The Embree scene, for the oracle's other ray casters (PixelOracle shares it).
+  const EmbreeScene& embree() const;
 
  private:
   struct Impl;

@@ -1,9 +1,16 @@
 // The ray oracle's sampling plan: which rays to cast, in a fixed order (design: "Oracle").
 //
-// Order: candidate buildings (boxes that may meet the view volume) in scene order, each with its
-// surface samples in order (surface_samples.hpp); then the stratified grid over the view volume
-// row by row, jittered by a SplitMix64 stream seeded with options.seed. The plan is produced in
-// chunks so that a query over millions of rays needs memory for one chunk only.
+// Order: candidate objects (buildings, then mesh objects, whose boxes may meet the view volume)
+// in scene order, each with its surface samples in order (surface_samples.hpp); then the
+// stratified grid over the view volume row by row, jittered by a SplitMix64 stream seeded with
+// options.seed. The plan is produced in chunks so that a query over millions of rays needs
+// memory for one chunk only.
+//
+// Where rays start: a perspective or omnidirectional camera's rays start at the eye. An
+// orthographic camera's rays are parallel to its view direction: the ray aimed at a sample point
+// p starts on the near plane directly in front of p (p minus (depth of p - near) along the view
+// direction), so every ray has its own origin; samples before the near plane or outside the
+// ortho_width x ortho_height rectangle get no ray (nothing there is in the view volume).
 #pragma once
 
 #include <cstdint>
@@ -18,30 +25,40 @@
 
 namespace cullcheck::oracle {
 
-inline constexpr std::uint32_t kNoBuilding = std::numeric_limits<std::uint32_t>::max();
+inline constexpr std::uint32_t kNoObjectIndex = std::numeric_limits<std::uint32_t>::max();
 
-// A ray in double precision, scene-local, from the camera's eye.
+// A ray in double precision, scene-local.
 struct PlannedRay {
+  Vec3 origin;            // the eye, or for an orthographic camera a point on the near plane
   Vec3 direction;         // unit length
   double t_near, t_far;   // metres along `direction`
-  Vec3 target;            // the sample aimed at, or eye + t_far * direction
-  std::uint32_t aimed_at; // index into Scene::buildings, or kNoBuilding for stratified rays
+  Vec3 target;            // the sample aimed at, or origin + t_far * direction
+  std::uint32_t aimed_at; // object index (mesh.hpp: buildings, then meshes), or kNoObjectIndex
   RaySource source;
 };
 
-// The view volume as a cone of directions plus the extent it allows along each of them.
+// The view volume and the extent it allows along each ray.
 class ViewCone {
  public:
   explicit ViewCone(const Camera& camera);
   const ViewVolume& volume() const { return volume_; }
-  // False when no point along the unit direction `d` lies in the view volume; otherwise the
-  // extent: from the near plane (geometry before it is clipped, so it hides nothing) to far.
+  // Perspective and omnidirectional cameras: false when no point along the unit direction `d`
+  // from the eye lies in the view volume; otherwise the extent: from the near plane (geometry
+  // before it is clipped, so it hides nothing) to far. Omnidirectional: [0, far].
+  // Orthographic cameras: every ray has direction forward() and t in [0, far - near] from its
+  // origin on the near plane; `d` must be forward() (anything else gives false).
   bool extent(Vec3 d, double& t_near, double& t_far) const;
+  // The ray toward sample point `p`, or false when it cannot meet p inside the view volume.
+  bool ray_toward(Vec3 p, PlannedRay& out) const;
+  Vec3 forward() const { return basis_.forward; }
 
  private:
   ViewVolume volume_;
-  Vec3 forward_;
+  CameraBasis basis_;
+  Vec3 eye_;
   double near_, far_;
+  bool orthographic_;
+  double half_width_ = 0.0, half_height_ = 0.0;  // orthographic rectangle
 };
 
 class RayPlan {
@@ -51,11 +68,11 @@ class RayPlan {
   // is exhausted; returns false once nothing was left to append.
   bool next(std::vector<PlannedRay>& out, std::size_t count);
   std::size_t candidates() const { return candidates_; }
-  std::size_t capped_buildings() const { return capped_; }
+  std::size_t capped_objects() const { return capped_; }
   const ViewCone& cone() const { return cone_; }
 
  private:
-  void plan_building(std::uint32_t index, std::vector<PlannedRay>& out);
+  void plan_object(std::uint32_t index, std::vector<PlannedRay>& out);
   void plan_cell(std::vector<PlannedRay>& out);
 
   const Scene& scene_;
@@ -63,8 +80,8 @@ class RayPlan {
   const SamplingOptions& options_;
   ViewCone cone_;
   CameraBasis basis_;
-  std::uint32_t building_ = 0;  // next building to consider
-  std::size_t cell_ = 0;        // next stratified cell, row-major
+  std::uint32_t object_ = 0;  // next object to consider (buildings, then meshes)
+  std::size_t cell_ = 0;      // next stratified cell, row-major
   int columns_ = 0, rows_ = 0;
   SplitMix64 rng_;
   std::size_t candidates_ = 0, capped_ = 0;

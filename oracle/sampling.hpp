@@ -11,9 +11,10 @@
 namespace cullcheck::oracle {
 
 struct SamplingOptions {
-  // Surface samples, per face of every candidate building (walls and roof pieces). Along each
-  // face dimension of length L the grid has max(face_grid, ceil(L / spacing_m)) intervals; the
-  // face's edges (including the vertices) get max(edge_samples, that) intervals.
+  // Surface samples, per face of every candidate object (a building's walls and roof pieces, a
+  // mesh object's triangles; surface_samples.hpp). Along each face dimension of length L the
+  // grid has max(face_grid, ceil(L / spacing_m)) intervals; the face's edges (including the
+  // vertices) get max(edge_samples, that) intervals.
   double spacing_m = 2.0;
   int face_grid = 4;
   int edge_samples = 4;
@@ -21,11 +22,14 @@ struct SamplingOptions {
   // sample also has a copy moved into the face by `inset` (relative to the face's size), whose
   // ray hits the face unambiguously.
   double inset = 1e-4;
-  // When a building would get more samples than this, its spacing is widened until it fits.
+  // When an object (a building or a mesh object) would get more samples than this, its spacing
+  // is widened until it fits (surface_samples.hpp says when it cannot).
   std::size_t max_samples_per_building = 4096;
   // Stratified rays over the view volume: a jittered grid of `frustum_resolution` columns over
-  // the image plane (rows in proportion to the aspect ratio); omnidirectional cameras get
-  // 2N azimuth columns by N rows, equal-area (uniform in sin(elevation)). 0 disables them.
+  // the image plane (rows in proportion to the aspect ratio, at most 4N); an orthographic
+  // camera's grid covers its ortho_width x ortho_height rectangle the same way (parallel rays
+  // from the near plane); omnidirectional cameras get 2N azimuth columns by N rows, equal-area
+  // (uniform in sin(elevation)). 0 disables them.
   int frustum_resolution = 256;
   // Seed of the jitter PRNG (SplitMix64, implemented in the oracle: the same seed gives the
   // same rays on every platform).

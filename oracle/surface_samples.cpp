@@ -87,22 +87,66 @@ std::vector<Vec3> samples_at(const Building& b, const SamplingOptions& o, double
   return out;
 }
 
-}  // namespace
+std::vector<Vec3> samples_at(const MeshObject& m, const SamplingOptions& o, double spacing) {
+  std::vector<Vec3> out;
+  for (const auto& t : m.triangles) {
+    const Vec3 v[3] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
+    const Vec3 centroid = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
+    const double longest = std::max({length(v[1] - v[0]), length(v[2] - v[1]), length(v[0] - v[2])});
+    const std::size_t n = std::max(intervals(longest, spacing, o.face_grid), intervals(longest, spacing, o.edge_samples));
+    // Boundary: each edge from its start vertex up to (not including) the next vertex.
+    for (int e = 0; e < 3; ++e) {
+      const Vec3 a = v[e], b = v[(e + 1) % 3];
+      for (std::size_t k = 0; k < n; ++k) {
+        const Vec3 p = a + (b - a) * (double(k) / double(n));
+        out.push_back(p);
+        out.push_back(p + (centroid - p) * o.inset);
+      }
+    }
+    // Interior nodes of the barycentric grid.
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = 1; i + j < n; ++j)
+        out.push_back(v[0] + (v[1] - v[0]) * (double(i) / double(n)) + (v[2] - v[0]) * (double(j) / double(n)));
+  }
+  return out;
+}
 
-SurfaceSamples surface_samples(const Building& building, const SamplingOptions& options) {
+// Widens the spacing until the cap holds, or until every face is at its minimum grid (spacing
+// beyond the object's largest dimension changes nothing more).
+template <class Object>
+SurfaceSamples capped_samples(const Object& object, const SamplingOptions& options, double largest) {
   SurfaceSamples s;
   s.spacing_m = options.spacing_m;
-  s.points = samples_at(building, options, s.spacing_m);
-  // Widen the spacing until the cap holds, or until every face is at its minimum grid (spacing
-  // beyond the building's largest dimension changes nothing more).
-  const double largest = std::max({building.bounds.hi.x - building.bounds.lo.x,
-                                   building.bounds.hi.y - building.bounds.lo.y, building.height});
+  s.points = samples_at(object, options, s.spacing_m);
+  if (s.points.size() <= options.max_samples_per_building) return s;
+  // The count never grows with the spacing, so when even the coarsest spacing the loop below can
+  // reach misses the cap, the loop would end there: go there at once (an object of many faces,
+  // e.g. an imported model, would otherwise be sampled dozens of times over).
+  double coarsest = s.spacing_m;
+  while (coarsest <= largest) coarsest *= 1.25;
+  if (coarsest != s.spacing_m) {
+    std::vector<Vec3> points = samples_at(object, options, coarsest);
+    if (points.size() > options.max_samples_per_building) return {std::move(points), coarsest, true};
+  }
   while (s.points.size() > options.max_samples_per_building && s.spacing_m <= largest) {
     s.capped = true;
     s.spacing_m *= 1.25;
-    s.points = samples_at(building, options, s.spacing_m);
+    s.points = samples_at(object, options, s.spacing_m);
   }
   return s;
+}
+
+}  // namespace
+
+SurfaceSamples surface_samples(const MeshObject& mesh, const SamplingOptions& options) {
+  const Box3& box = mesh.bounds;
+  return capped_samples(mesh, options, std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z}));
+}
+
+SurfaceSamples surface_samples(const Building& building, const SamplingOptions& options) {
+  return capped_samples(building, options,
+                        std::max({building.bounds.hi.x - building.bounds.lo.x,
+                                  building.bounds.hi.y - building.bounds.lo.y, building.height}));
 }
 
 }  // namespace cullcheck::oracle

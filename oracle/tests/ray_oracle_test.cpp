@@ -146,6 +146,140 @@ TEST(RayOracle, RejectsBadOptionsAndCamerasWithTypedErrors) {
   EXPECT_THROW(oracle.witness(c), InputError);
 }
 
+// A wall mesh across the view at x = 10 (40 m wide, 30 m high, eye at 5 m) hides a box behind
+// it at x = 20..22 entirely, except through a 2 m x 2 m window (|y| < 1, 4 < z < 6).
+Scene window_scene(bool with_window) {
+  const Opening window{19, 21, 4, 6};  // s runs from y = -20
+  return scene_of({box_building(2, 20, -3, 22, 3, 10)},
+                  {wall_mesh(1, {10, -20, 0}, {0, 1, 0}, 40, 30, with_window ? &window : nullptr)});
+}
+
+TEST(RayOracle, BoxBehindAWallMeshIsWitnessedThroughItsWindowAndOnlyThrough) {
+  const Camera c = level_camera({0, 0, 5}, 0.0);
+  const Scene open = window_scene(true);
+  const RayOracle oracle(open);
+  const OracleResult r = oracle.witness(c);
+  EXPECT_EQ(r.candidates, 2u);
+  ASSERT_EQ(r.witnessed, (std::vector<ObjectId>{1, 2}));
+  const WitnessRay& w = r.witnesses.at(2);
+  // The witness passes the wall's plane inside the window and hits the box.
+  const double s = (10 - w.origin.x) / w.direction.x;
+  const Vec3 at_wall = w.origin + w.direction * s;
+  EXPECT_LT(std::abs(at_wall.y), 1.0) << describe(w);
+  EXPECT_GT(at_wall.z, 4.0) << describe(w);
+  EXPECT_LT(at_wall.z, 6.0) << describe(w);
+  EXPECT_GE(w.hit_point.x, 20.0 - 1e-9);
+  const RayOracle::Replay replay = oracle.replay(w, c);
+  ASSERT_TRUE(replay.hit.has_value());
+  EXPECT_EQ(*replay.hit, 2u);
+  EXPECT_TRUE(replay.in_view_volume);
+
+  const Scene closed = window_scene(false);
+  EXPECT_EQ(RayOracle(closed).witness(c).witnessed, std::vector<ObjectId>{1});
+}
+
+TEST(RayOracle, MeshObjectsAreCandidatesOnlyWhenTheirBoxesMayMeetTheViewVolume) {
+  const Scene scene = scene_of({}, {wall_mesh(1, {10, -2, 0}, {0, 1, 0}, 4, 4),      // ahead
+                                    wall_mesh(2, {-10, -2, 0}, {0, 1, 0}, 4, 4)});  // behind
+  const OracleResult r = RayOracle(scene).witness(level_camera({0, 0, 1.7}, 0.0));
+  EXPECT_EQ(r.candidates, 1u);
+  EXPECT_EQ(r.witnessed, std::vector<ObjectId>{1});
+  EXPECT_EQ(r.witnesses.at(1).aimed_at, 1u);  // the first ray is a surface sample on the wall
+  EXPECT_EQ(r.witnesses.at(1).source, RaySource::surface_sample);
+}
+
+// Orthographic cameras: parallel rays along the view direction, each from the near plane.
+TEST(RayOracle, OrthographicStratifiedGridCoversTheRectangleWithParallelRaysFromTheNearPlane) {
+  const Scene empty;
+  Camera c = ortho_camera({3, 4, 10}, 0.5, 0.0, 20, 10);
+  c.near = 2.0;
+  SamplingOptions o;
+  o.frustum_resolution = 64;  // 64 columns x 32 rows over 20 m x 10 m
+  RayLog log;
+  const OracleResult r = RayOracle(empty).witness(c, o, &log);
+  EXPECT_EQ(r.rays_cast, 64u * 32u);
+  ASSERT_EQ(log.rays.size(), 64u * 32u);
+  const CameraBasis b = basis_of(c);
+  for (const RayLog::Ray& ray : log.rays) {  // the empty scene's float origin is (0, 0, 0)
+    const Vec3 o3{ray.org[0], ray.org[1], ray.org[2]}, d{ray.dir[0], ray.dir[1], ray.dir[2]};
+    EXPECT_NEAR(length(d - b.forward), 0.0, 1e-7);
+    EXPECT_NEAR(dot(o3 - c.position, b.forward), 2.0, 1e-5);  // on the near plane
+    EXPECT_LE(std::abs(dot(o3 - c.position, b.right)), 10.0 + 1e-5);
+    EXPECT_LE(std::abs(dot(o3 - c.position, b.up)), 5.0 + 1e-5);
+    EXPECT_EQ(ray.t_near, 0.0f);
+    EXPECT_NEAR(ray.t_far, 1000.0 - 2.0, 1e-3);  // far - near
+  }
+}
+
+TEST(RayOracle, OrthographicTopDownSeesRoofsInItsRectangleOnly) {
+  // Looking straight down from 50 m over the 40 m x 40 m square |x|, |y| <= 20 (near 1 m): boxes
+  // 1 and 3 stand inside it; the 30 m box 2 stands outside (x >= 25), where a perspective camera
+  // with a wide enough field of view would see its wall and this one sees nothing.
+  const Scene scene = scene_of({box_building(1, -5, -5, 5, 5, 10), box_building(2, 25, -5, 30, 5, 30),
+                                box_building(3, 10, 10, 15, 15, 2)});
+  Camera c = ortho_camera({0, 0, 50}, 0.0, -kPi / 2, 40, 40);
+  c.near = 1.0;
+  const RayOracle oracle(scene);
+  const OracleResult r = oracle.witness(c);
+  EXPECT_EQ(r.candidates, 2u);
+  ASSERT_EQ(r.witnessed, (std::vector<ObjectId>{1, 3}));
+  for (ObjectId id : r.witnessed) {
+    const WitnessRay& w = r.witnesses.at(id);
+    const double roof = id == 1 ? 10.0 : 2.0;
+    EXPECT_NEAR(w.hit_point.z, roof, 1e-9) << describe(w);  // rays straight down hit roofs
+    EXPECT_NEAR(w.origin.z, 49.0, 1e-9) << describe(w);      // from the near plane, 1 m below the eye
+    EXPECT_NEAR(w.t_hit, 49.0 - roof, 1e-9) << describe(w);
+    EXPECT_NEAR(w.direction.z, -1.0, 1e-15);
+    const RayOracle::Replay replay = oracle.replay(w, c);
+    ASSERT_TRUE(replay.hit.has_value()) << describe(w);
+    EXPECT_EQ(*replay.hit, id);
+    EXPECT_TRUE(replay.in_view_volume);
+    EXPECT_NEAR(replay.t_hit, w.t_hit, 1e-9);
+  }
+  EXPECT_EQ(r.witnesses.at(1).source, RaySource::surface_sample);
+  EXPECT_EQ(r.witnesses.at(1).aimed_at, 1u);
+}
+
+TEST(RayOracle, OrthographicViewHidesWhatAPerspectiveViewShowsOverAWall) {
+  // Looking east from (0, 0, 5) through a 10 m x 10 m box: a wall at x = 10 covering |y| <= 6,
+  // z <= 12 hides the 40 m tower behind it, which a perspective camera sees above the wall.
+  const Scene scene = scene_of({box_building(1, 10, -6, 11, 6, 12), box_building(2, 30, -3, 32, 3, 40)});
+  const Camera ortho = ortho_camera({0, 0, 5}, 0.0, 0.0, 10, 10);
+  const RayOracle oracle(scene);
+  const OracleResult r = oracle.witness(ortho);
+  EXPECT_EQ(r.candidates, 2u);
+  EXPECT_EQ(r.witnessed, std::vector<ObjectId>{1});
+  EXPECT_NEAR(r.witnesses.at(1).hit_point.x, 10.0, 1e-9);
+  EXPECT_EQ(oracle.witness(level_camera({0, 0, 5}, 0.0, 60 * kDeg, 90 * kDeg)).witnessed, (std::vector<ObjectId>{1, 2}));
+  // Near plane beyond the wall: the wall is clipped and the tower shows.
+  Camera past = ortho;
+  past.near = 12.0;
+  const OracleResult p = oracle.witness(past);
+  EXPECT_EQ(p.witnessed, std::vector<ObjectId>{2});
+  EXPECT_NEAR(p.witnesses.at(2).hit_point.x, 30.0, 1e-9);
+  EXPECT_NEAR(p.witnesses.at(2).origin.x, 12.0, 1e-12);
+  EXPECT_NEAR(p.witnesses.at(2).t_hit, 18.0, 1e-9);
+}
+
+TEST(RayOracle, OrthographicRunsAreDeterministicAndIndependentOfThreadCount) {
+  const RandomCity city = random_city(22);
+  Camera c = ortho_camera(city.camera.position + Vec3{0, 0, 60}, 0.3, -0.9, 120, 80);
+  SamplingOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const RayOracle oracle(city.scene);
+  const OracleResult a = oracle.witness(c, two), b = oracle.witness(c, one);
+  EXPECT_EQ(a.witnesses, b.witnesses);
+  EXPECT_EQ(a.rays_cast, b.rays_cast);
+  ASSERT_GT(a.witnessed.size(), 3u);
+  for (const auto& [id, ray] : a.witnesses) {
+    const RayOracle::Replay replay = oracle.replay(ray, c);
+    ASSERT_TRUE(replay.hit.has_value()) << describe(ray);
+    EXPECT_EQ(*replay.hit, id) << describe(ray);
+    EXPECT_TRUE(replay.in_view_volume) << describe(ray);
+  }
+}
+
 TEST(RayOracle, EmptySceneWitnessesNothing) {
   const Scene scene;
   const OracleResult r = RayOracle(scene).witness(kStreetEast);

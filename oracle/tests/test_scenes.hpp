@@ -3,6 +3,7 @@
 // core/ and oracle/ only.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -34,12 +35,66 @@ inline Scene scene_of(std::vector<Building> buildings) {
   return s;
 }
 
+inline Scene scene_of(std::vector<Building> buildings, std::vector<MeshObject> meshes) {
+  Scene s = scene_of(std::move(buildings));
+  s.meshes = std::move(meshes);
+  return s;
+}
+
+inline MeshObject mesh_object(ObjectId id, std::vector<Vec3> vertices, std::vector<std::array<std::uint32_t, 3>> triangles) {
+  MeshObject m;
+  m.id = id;
+  m.vertices = std::move(vertices);
+  m.triangles = std::move(triangles);
+  validate_and_finish(m);
+  return m;
+}
+
+// A rectangular opening in a wall, in the wall's own coordinates: s along it, t up.
+struct Opening {
+  double s0, s1, t0, t1;
+};
+
+// A vertical wall as an open mesh (one sheet, seen from both sides): the points corner + along * s
+// + (0, 0, t) for s in [0, width], t in [0, height], `along` a horizontal unit vector. With an
+// opening, the wall is the frame around it: 8 triangles joining the outer and the inner corners
+// (no T-junctions, so Embree's watertight test leaves no crack); without, 2 triangles.
+inline MeshObject wall_mesh(ObjectId id, Vec3 corner, Vec3 along, double width, double height,
+                            const Opening* opening = nullptr) {
+  auto at = [&](double s, double t) { return corner + along * s + Vec3{0, 0, t}; };
+  if (!opening) return mesh_object(id, {at(0, 0), at(width, 0), at(width, height), at(0, height)}, {{0, 1, 2}, {0, 2, 3}});
+  const Opening& o = *opening;
+  std::vector<Vec3> v = {at(0, 0),       at(width, 0),   at(width, height), at(0, height),
+                         at(o.s0, o.t0), at(o.s1, o.t0), at(o.s1, o.t1),    at(o.s0, o.t1)};
+  std::vector<std::array<std::uint32_t, 3>> t;
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    const std::uint32_t k1 = (k + 1) % 4;
+    t.push_back({k, k1, 4 + k1});
+    t.push_back({k, 4 + k1, 4 + k});
+  }
+  return mesh_object(id, std::move(v), std::move(t));
+}
+
 inline Camera level_camera(Vec3 eye, double yaw, double hfov = 60 * kDeg, double vfov = 60 * kDeg) {
   Camera c;
   c.position = eye;
   c.yaw = yaw;
   c.hfov = hfov;
   c.vfov = vfov;
+  return c;
+}
+
+// An orthographic camera: a width x height metre box around the view axis through `eye`.
+inline Camera ortho_camera(Vec3 eye, double yaw, double pitch, double width, double height) {
+  Camera c;
+  c.position = eye;
+  c.yaw = yaw;
+  c.pitch = pitch;
+  c.projection = Projection::orthographic;
+  c.ortho_width = width;
+  c.ortho_height = height;
+  c.near = 0.0;
+  c.far = 1000.0;
   return c;
 }
 

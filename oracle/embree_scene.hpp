@@ -1,0 +1,60 @@
+// The oracle's Embree scene: the triangulated scene (mesh.hpp) in one Embree scene, and the two
+// ways the oracle asks it for a first hit. Internal to the oracle: included by its .cpp files
+// only (it includes Embree; the public headers do not).
+//
+// Built once by a single-threaded Embree device, so the BVH, and with it the choice between
+// exactly equal hits, is the same on every run. rtcIntersect1 is thread-safe: rays are cast
+// from the oracle's own threads.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "oracle/mesh.hpp"
+#include "oracle/ray_oracle.hpp"
+
+namespace cullcheck::oracle {
+
+struct EmbreeHit {
+  float t = 0.0f;
+  std::uint32_t triangle = RTC_INVALID_GEOMETRY_ID;
+  bool hit() const { return triangle != RTC_INVALID_GEOMETRY_ID; }
+};
+
+// A ray as Embree takes it: `origin_local` relative to the mesh's origin, rounded to floats;
+// t_far rounded up by one ulp (rounding it down could stop a ray just short of its sample's face).
+RayLog::Ray to_float(Vec3 origin_local, Vec3 direction, double t_near, double t_far);
+RTCRayHit embree_ray(const RayLog::Ray& r);
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const Scene& scene);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  const TriangleMesh& mesh() const { return mesh_; }
+  RTCScene handle() const { return scene_; }
+
+  // The first hit of `r` in [t_near, t_far] among all triangles.
+  EmbreeHit cast(const RayLog::Ray& r) const;
+  // The first hit among the triangles of the objects whose flag is set (indexed by object index,
+  // mesh.hpp), found exactly: Embree's context filter rejects every other hit during traversal,
+  // so the result is the first hit of the same ray in the scene made of those objects alone.
+  EmbreeHit cast_among(const RayLog::Ray& r, const std::vector<std::uint8_t>& allowed_objects) const;
+
+  // The hit recomputed in double precision on the hit triangle's plane, so a view-volume test
+  // is not blurred by Embree's float t (falls back to it for rays grazing the plane).
+  double exact_t(Vec3 origin, Vec3 direction, const EmbreeHit& hit) const;
+
+ private:
+  TriangleMesh mesh_;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace cullcheck::oracle
