@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # End-to-end checks of the `cullcheck` program: every subcommand runs, bad input gives one clear
 # line and exit 2, a failed run never clobbers a file already written, output is deterministic.
-# Usage: cli_test.sh /path/to/cullcheck
+# Usage: cli_test.sh /path/to/cullcheck BUILD_DIR SOURCE_DIR
+#   (BUILD_DIR holds examples/subjects/*; SOURCE_DIR the repository, for the Python subjects)
 set -u
 cc="$1"
+build="${2:-$(dirname "$cc")/../..}"
+source_dir="${3:-$(dirname "$0")/..}"
+subjects="$build/examples/subjects"
+misbehaving="python3 $source_dir/properties/subjects/misbehaving_subject.py"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -27,7 +32,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report region cell vbaoi; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region cell vbaoi gate fuzz; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
@@ -148,6 +153,103 @@ printf '{"format":"cullcheck-scene","version":1,"buildings":[{"id":0,"height":10
 expect_exit 0 "published rule is reported, not gated" "$cc" verify --scene "$work/slab.json" --method oh_os_thesis \
   --camera '{"position":[0,0,30],"pitch":-0.6,"hfov":1.047,"vfov":0.785}'
 grep -q "replay: cullcheck verify --scene" "$work/out" && pass || fail "violation printed no replay line"
+
+
+# ---- The gate for outside subjects (README "The subject protocol") ----------------------------
+small=(--generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}')
+walk=(--path-params '{"frames":12}')
+json_field() {  # file python-expression-on-d
+  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"
+}
+# A built-in method wrapped as a subject passes, with the PVS of the same method in-process at every frame.
+expect_exit 0 "gate: built-in method over the protocol" "$cc" gate "${small[@]}" "${walk[@]}" \
+  --subject "$subjects/builtin_subject" --method oh_os_conservative -o "$work/g.json" --junit "$work/g.xml"
+[ "$(json_field "$work/g.json" "d['runs'][1]['frames_pvs_equal_to']['oh_os_conservative']")" = 12 ] && pass \
+  || fail "gate: the protocol changed the built-in method's PVS"
+[ "$(json_field "$work/g.json" "d['runs'][1]['violations'] == d['runs'][0]['violations'] and d['runs'][1]['pvs_mean'] == d['runs'][0]['pvs_mean']")" = True ] \
+  && pass || fail "gate: the protocol changed the built-in method's violations or PVS sizes"
+[ "$(json_field "$work/g.json" "d['runs'][1]['pixels']['misdrawn_pixels']")" = 0 ] && pass || fail "gate: a conservative subject misdrew pixels"
+grep -q '<testsuites' "$work/g.xml" && ! grep -q '<failure' "$work/g.xml" && pass || fail "gate: JUnit of a passing run"
+# The README's minimal subjects (C++ and Python) pass and cull exactly what frustum culling culls.
+expect_exit 0 "gate: minimal C++ subject" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$subjects/minimal_subject" \
+  --method frustum -o "$work/g.json"
+[ "$(json_field "$work/g.json" "d['runs'][1]['frames_pvs_equal_to']['frustum']")" = 12 ] && pass || fail "gate: minimal subject != frustum"
+expect_exit 0 "gate: minimal Python subject" "$cc" gate "${small[@]}" "${walk[@]}" \
+  --subject "python3 $source_dir/examples/subjects/minimal_subject.py" -o "$work/g.json"
+# A miss fails the gate (exit 1) with a replay line that fails again on its own.
+expect_exit 1 "gate: a subject that culls what is visible" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving cull-all 4" \
+  -o "$work/g.json" --junit "$work/g.xml"
+grep -q "culled object .* at frame 4" "$work/out" && pass || fail "gate: the miss does not name frame 4"
+grep -q '<failure message="culled' "$work/g.xml" && pass || fail "gate: JUnit lacks the failure"
+replay=$(grep -m1 "replay: cullcheck gate" "$work/out" | sed 's/^ *replay: cullcheck //')
+if [ -n "$replay" ]; then
+  eval "\"$cc\" $replay -o \"$work/replay.json\"" >/dev/null 2>&1
+  [ $? -eq 1 ] && pass || fail "gate: the replay line does not reproduce the miss"
+else
+  fail "gate: no replay line"
+fi
+# Subjects that crash, hang or lie: exit 2, one line naming the frame and the fault, the report of
+# the frames before it written.
+for case in "crash 3|crashed|3" "segfault 2|signal 11|2" "hang 1|timed out|1" "garbage 2|garbage|2" \
+            "wrong-frame 2|answered frame 3, expected 2|2" "unknown-id 1|object 99999999 is not in the scene|1"; do
+  IFS='|' read -r mode text frame <<<"$case"
+  expect_exit 2 "gate: subject $mode" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving $mode" --timeout 2 -o "$work/m.json"
+  expect_error_names "gate: subject $mode" "at frame $frame: .*$text"
+  [ "$(json_field "$work/m.json" "d['frames_run'], d['aborted']['frame']")" = "$frame $frame" ] && pass \
+    || fail "gate: subject $mode: the report does not keep the $frame frames before the fault"
+done
+expect_exit 2 "gate: a ready message without claims" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving bad-ready" -o "$work/m.json"
+expect_error_names "gate: bad ready" "during the handshake: protocol violation"
+expect_exit 2 "gate: a program that is not there" "$cc" gate "${small[@]}" --subject "$work/no-such-program" -o "$work/m.json"
+expect_error_names "gate: missing program" "status 127"
+# Straw men: culling nothing passes the conservative check, and the over-estimation limit catches it.
+expect_exit 0 "gate: a subject that culls nothing is conservative" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving everything"
+expect_exit 1 "gate: --max-overestimation catches a subject that culls nothing" "$cc" gate "${small[@]}" "${walk[@]}" \
+  --subject "$misbehaving everything" --max-overestimation 3
+# An approximate subject is judged by its pixel budget.
+expect_exit 1 "gate: approximate subject over its budget" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving approximate 100"
+grep -q "over budget: .* misdrawn pixels (budget 100)" "$work/out" && pass || fail "gate: no over-budget line"
+# Recorded visible sets: cull's per-frame output is a valid file; a tampered one fails.
+"$cc" generate "${small[@]}" -o "$work/s.json" --path-output "$work/p.json" --path-params '{"frames":6}' >/dev/null
+"$cc" cull --scene "$work/s.json" --path "$work/p.json" --method frustum | sed 's/"pvs":/"ids":/' >"$work/rec.jsonl"
+expect_exit 0 "gate --pvs" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec.jsonl" -o "$work/r.json"
+sed '3s/"ids":\[[0-9,]*\]/"ids":[]/' "$work/rec.jsonl" >"$work/rec-miss.jsonl"
+expect_exit 1 "gate --pvs with a missing object" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec-miss.jsonl" \
+  -o "$work/r.json"
+grep -q "replay: cullcheck gate --scene .* --pvs .* --frame 2" "$work/out" && pass || fail "gate --pvs: replay does not name frame 2"
+head -3 "$work/rec.jsonl" >"$work/rec-short.jsonl"
+expect_exit 2 "gate --pvs with missing frames" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec-short.jsonl" \
+  -o "$work/r.json"
+expect_error_names "gate --pvs with missing frames" "at frame 3: protocol violation: holds no line for this frame"
+# One camera's visible set given inline.
+expect_exit 1 "gate --visible []" "$cc" gate --scene "$work/s.json" --camera "$camera" --visible '[]' -o "$work/r.json"
+expect_exit 2 "gate --visible without a camera" "$cc" gate --scene "$work/s.json" --visible '[]'
+expect_exit 2 "gate with nothing to check" "$cc" gate --scene "$work/s.json"
+expect_error_names "gate with nothing to check" "nothing to check"
+# Orthographic cameras: subjects and frustum culling take them, horizon methods skip them (counted).
+expect_exit 0 "gate: orthographic camera" "$cc" gate --scene "$work/s.json" --method frustum,oh_os_conservative \
+  --subject "$subjects/minimal_subject" --camera '{"position":[0,0,150],"pitch":-1.5707963267948966,"projection":"orthographic","ortho_width":120,"ortho_height":90}' \
+  -o "$work/o.json"
+[ "$(json_field "$work/o.json" "d['runs'][1]['frames_skipped'], d['runs'][2]['frames_pvs_equal_to']['frustum']")" = "1 1" ] && pass \
+  || fail "gate: orthographic camera: horizon method not skipped, or the subject differs from frustum culling"
+
+# ---- Fuzzing an outside program ----------------------------------------------------------------
+# The buggy example culler is found and shrunk by the fuzzer on its own; its counterexample
+# folder replays the failure.
+expect_exit 1 "fuzz finds the buggy culler" "$cc" fuzz --subject "$subjects/buggy_sphere_subject" --budget 200 --seed 1 \
+  --out "$work/cex" -o "$work/fuzz.json"
+for f in scene.json scene.glb path.json replay.sh map.png frame.png case.json; do
+  [ -s "$work/cex/$f" ] && pass || fail "fuzz: counterexample lacks $f"
+done
+[ "$(json_field "$work/cex/case.json" "d['failure']['objects'] <= 3 and d['failure']['frames'] <= 2")" = True ] && pass \
+  || fail "fuzz: the counterexample was not shrunk to at most 3 objects and 2 frames"
+PATH="$(dirname "$cc"):$PATH" sh "$work/cex/replay.sh" >/dev/null 2>&1
+[ $? -eq 1 ] && pass || fail "fuzz: replay.sh does not reproduce the failure"
+expect_exit 0 "fuzz passes a correct subject" "$cc" fuzz --subject "$subjects/builtin_subject frustum" --budget 25 --seed 2 \
+  --out "$work/cex2" -o "$work/fuzz2.json"
+[ "$(json_field "$work/fuzz2.json" "d['cases'] == 25 and d['cases_by_path_kind'].get('viewport_edge', 0) > 0 and d['cases_by_path_kind'].get('orthographic', 0) > 0")" = True ] \
+  && pass || fail "fuzz: did not run 25 cases reaching viewport-edge and orthographic cameras"
+expect_exit 2 "fuzz: a subject that cannot start" "$cc" fuzz --subject "$work/no-such-program" --budget 2
 
 echo "cli_test: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
+#include "reports/frame_pictures.hpp"
 #include "reports/gate_verdict.hpp"
 #include "subjects/scene_files.hpp"
 #include "subjects/subject_error.hpp"
@@ -33,6 +34,32 @@ struct CaseOutcome {
   bool subject_error = false;
   std::string message;
   PathVerification verification;
+  std::map<std::size_t, std::vector<ObjectId>> pvs_by_frame;
+};
+
+// Forwards to the subject and keeps each frame's answer, for the counterexample's pictures.
+class Recording final : public CullingMethod {
+ public:
+  Recording(std::unique_ptr<CullingMethod> inner, std::map<std::size_t, std::vector<ObjectId>>& out)
+      : inner_(std::move(inner)), out_(out) {}
+  std::string name() const override { return inner_->name(); }
+  bool claims_conservative() const override { return inner_->claims_conservative(); }
+  std::optional<std::uint64_t> pixel_error_budget() const override { return inner_->pixel_error_budget(); }
+  std::string unsupported_camera(const Camera& c) const override { return inner_->unsupported_camera(c); }
+  void set_frame(std::size_t frame, double time) override {
+    frame_ = frame;
+    inner_->set_frame(frame, time);
+  }
+  CullResult cull(const Camera& camera) override {
+    CullResult r = inner_->cull(camera);
+    out_[frame_] = r.pvs;
+    return r;
+  }
+
+ private:
+  std::unique_ptr<CullingMethod> inner_;
+  std::map<std::size_t, std::vector<ObjectId>>& out_;
+  std::size_t frame_ = 0;
 };
 
 // One case: a fresh run of the subject on the case's scene and path, held to the oracle.
@@ -54,7 +81,7 @@ CaseOutcome run_case(const generators::FuzzCase& c, const FuzzOptions& options, 
   std::vector<MethodUnderTest> methods;
   try {
     MethodUnderTest m;
-    m.method = std::make_unique<SubjectMethod>(scene, so, c.path.frames.size());
+    m.method = std::make_unique<Recording>(std::make_unique<SubjectMethod>(scene, so, c.path.frames.size()), out.pvs_by_frame);
     m.outside = true;
     m.replay = [source, command = options.subject](std::size_t, const Camera& camera) {
       return "cullcheck gate " + source.replay_flags() + " --subject " + shell_quote(command) + " --camera " + camera_arg(camera);
@@ -109,8 +136,13 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     // Shrinking accepts a smaller case only when it fails too, so the last failing case seen is
     // the minimal one RapidCheck reports.
     const Scene scene = generators::scene_of(c.spec);
-    result.failure = FuzzFailure{c, outcome.message, outcome.subject_error, std::move(outcome.verification),
-                                 scene.object_count(), scene.triangle_count()};
+    result.failure = FuzzFailure{c,
+                                 outcome.message,
+                                 outcome.subject_error,
+                                 std::move(outcome.verification),
+                                 std::move(outcome.pvs_by_frame),
+                                 scene.object_count(),
+                                 scene.triangle_count()};
     RC_FAIL(outcome.message);
   };
   // A listener of our own: RapidCheck's default one reads RC_PARAMS and prints its own seed,
@@ -192,6 +224,21 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
   doc["replay"] = replay;
   doc["generator_replay"] = "cullcheck gate " + generators::replay_args(f.minimal.spec) + " --path path.json --subject " +
                             shell_quote(options.subject);
+  // The pictures of the first failing frame (none when the subject failed before answering one).
+  std::optional<std::size_t> frame;
+  if (!f.verification.runs.empty()) {
+    const MethodRun& run = f.verification.runs.front();
+    if (!run.violations.empty()) frame = run.violations.front().frame;
+    else if (!run.over_budget.empty()) frame = run.over_budget.front().frame;
+  }
+  if (frame && frame < f.minimal.path.frames.size() && f.pvs_by_frame.count(*frame)) {
+    oracle::OracleOptions oracle_options;
+    oracle_options.sampling = options.sampling;
+    const FramePictures pictures =
+        write_frame_pictures(scene, f.minimal.path.frames[*frame], f.pvs_by_frame.at(*frame), oracle_options, dir);
+    doc["pictures"] = {{"frame", *frame}, {"map", "map.png"}, {"image", "frame.png"}, {"missed", pictures.missed},
+                       {"misdrawn_pixels", pictures.misdrawn_pixels}};
+  }
   write_text_file_atomically(dir + "/case.json", doc.dump(2) + "\n");
   return replay;
 }

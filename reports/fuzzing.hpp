@@ -38,6 +38,7 @@ struct FuzzFailure {
   std::string message;          // the check that failed, with the first violation
   bool subject_error = false;   // crashed, hung or lied rather than culled wrongly
   PathVerification verification;  // of the minimal case
+  std::map<std::size_t, std::vector<ObjectId>> pvs_by_frame;  // the subject's answers in it
   std::size_t objects = 0, triangles = 0;
 };
 

@@ -3,6 +3,7 @@
 #include "engine/shrinking/circle_tiling.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <optional>
@@ -153,6 +154,9 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     if (out.runs[m].method == options.reference_method) reference = m;
   const oracle::Oracle truth(scene);
   oracle::RayLog first_log;
+  bool pixels = options.pixels;
+  for (const MethodRun& run : out.runs) pixels = pixels || run.pixel_error_budget.has_value();
+  out.pixels.enabled = pixels;
   const double frame_seconds = path.frames_per_second > 0 ? 1.0 / path.frames_per_second : 0.0;
   for (std::size_t frame = 0; frame < path.frames.size(); ++frame) {
     const Camera& camera = path.frames[frame];
@@ -229,6 +233,15 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     } else {
       ++out.oracle.frames_exact_2d;
     }
+    // The pixel oracle: one full id buffer per checked frame, compared with every PVS.
+    std::optional<oracle::IdImage> full;
+    if (pixels) {
+      const auto pixel_start = std::chrono::steady_clock::now();
+      full = truth.pixels().render(camera, nullptr, options.oracle.sampling.threads);
+      ++out.pixels.frames;
+      out.pixels.rays += full->ids.size();
+      out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
+    }
     for (std::size_t m = 0; m < n; ++m) {
       if (!results[m]) continue;
       MethodRun& run = out.runs[m];
@@ -237,7 +250,41 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
       const bool claimed = engines[m].method->claims_conservative_for(camera);
       frames_claimed[m] += claimed ? 1 : 0;
-      const std::vector<ObjectId> missed = missing_from(answer.visible, pvs);
+      std::vector<ObjectId> missed = missing_from(answer.visible, pvs);
+      std::optional<oracle::PixelComparison> pixel;
+      if (full) {
+        const auto pixel_start = std::chrono::steady_clock::now();
+        pixel = truth.pixels().compare(*full, camera, pvs, options.oracle.sampling.threads);
+        out.pixels.rays += pixel->misdrawn_pixels;
+        out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
+        run.misdrawn_pixels.push_back(static_cast<double>(pixel->misdrawn_pixels));
+        run.misdrawn_total += pixel->misdrawn_pixels;
+        run.error_frames += pixel->misdrawn_pixels > 0 ? 1 : 0;
+        run.largest_blob = std::max(run.largest_blob, pixel->largest_blob);
+        run.most_misdrawn = std::max(run.most_misdrawn, pixel->misdrawn_pixels);
+        if (run.pixel_error_budget && pixel->misdrawn_pixels > *run.pixel_error_budget) {
+          ++run.frames_over_budget;
+          if (run.over_budget.size() < options.max_replays) {
+            ObjectId worst = 0;
+            std::uint64_t most = 0;
+            for (const auto& [id, count] : pixel->misdrawn_by_object)
+              if (count > most) worst = id, most = count;
+            Violation x;
+            x.frame = index;
+            x.building = worst;
+            x.camera = camera;
+            x.model = "pixel_ids";
+            x.witness = std::to_string(pixel->misdrawn_pixels) + " misdrawn pixels (budget " + std::to_string(*run.pixel_error_budget) +
+                        "), largest blob " + std::to_string(pixel->largest_blob) + ", most of them object " + std::to_string(worst);
+            x.replay = engines[m].replay(index, camera);
+            run.over_budget.push_back(std::move(x));
+          }
+        }
+        // Every misdrawn pixel shows an object the PVS culled: a witness the ray sampling may not have.
+        for (const auto& [id, ray] : pixel->witnesses)
+          if (!std::binary_search(answer.visible.begin(), answer.visible.end(), id)) missed.push_back(id);
+        std::sort(missed.begin(), missed.end());
+      }
       if (missed.empty()) continue;
       for (ViolationTally* tally : {&all_frames[m], claimed ? &claimed_frames[m] : nullptr}) {
         if (tally == nullptr) continue;
@@ -245,7 +292,18 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         ++tally->frames;
         for (ObjectId id : missed) {
           if (tally->kept.size() >= options.max_replays) break;
-          tally->kept.push_back(violation_of(index, id, camera, answer, engines[m].replay(index, camera)));
+          if (std::binary_search(answer.visible.begin(), answer.visible.end(), id)) {
+            tally->kept.push_back(violation_of(index, id, camera, answer, engines[m].replay(index, camera)));
+          } else {
+            Violation x;
+            x.frame = index;
+            x.building = id;
+            x.camera = camera;
+            x.model = "pixel_ids";
+            x.witness = oracle::describe(pixel->witnesses.at(id));
+            x.replay = engines[m].replay(index, camera);
+            tally->kept.push_back(std::move(x));
+          }
         }
       }
     }

@@ -159,7 +159,12 @@ std::string ChildProcess::exit_description() const {
   if (!reaped_) return "still running";
   if (WIFEXITED(status_)) {
     const int code = WEXITSTATUS(status_);
-    return code == 127 ? "exited with status 127 (command not found?)" : "exited with status " + std::to_string(code);
+    if (code == 127) return "exited with status 127 (command not found?)";
+    // A shell reports a child killed by signal N as status 128 + N.
+    if (code > 128 && code < 128 + 65)
+      return "exited with status " + std::to_string(code) + " (signal " + std::to_string(code - 128) + ", " +
+             ::strsignal(code - 128) + ", in the program the shell ran)";
+    return "exited with status " + std::to_string(code);
   }
   if (WIFSIGNALED(status_)) {
     const int sig = WTERMSIG(status_);

@@ -1,6 +1,8 @@
 #include "subjects/subject_method.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 
 namespace cullcheck {
 namespace {
@@ -19,12 +21,19 @@ std::string seconds_text(double s) {
 }  // namespace
 
 std::string program_name(const std::string& command) {
-  const std::size_t begin = command.find_first_not_of(" \t");
-  if (begin == std::string::npos) return "subject";
-  const std::size_t end = command.find_first_of(" \t", begin);
-  std::string word = command.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-  if (const std::size_t slash = word.rfind('/'); slash != std::string::npos) word = word.substr(slash + 1);
-  return word.empty() ? "subject" : word;
+  // The first word that is not an interpreter (python3 script.py names the script).
+  static const char* interpreters[] = {"python", "python3", "sh", "bash", "node", "env", "exec", "nice", "timeout"};
+  std::size_t begin = 0;
+  for (;;) {
+    begin = command.find_first_not_of(" \t", begin);
+    if (begin == std::string::npos) return "subject";
+    const std::size_t end = command.find_first_of(" \t", begin);
+    std::string word = command.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    if (const std::size_t slash = word.rfind('/'); slash != std::string::npos) word = word.substr(slash + 1);
+    const bool interpreter = std::find(std::begin(interpreters), std::end(interpreters), word) != std::end(interpreters);
+    if (!interpreter || end == std::string::npos) return word.empty() ? "subject" : word;
+    begin = end;
+  }
 }
 
 SubjectMethod::SubjectMethod(const Scene& scene, SubjectOptions options, std::size_t frames)

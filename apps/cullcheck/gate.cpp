@@ -181,8 +181,12 @@ Runner add_gate(CLI::App& app) {
         std::string timeouts;
         if (f->frame_timeout != 10.0) timeouts += " --timeout " + round_trip_text(f->frame_timeout);
         if (f->hello_timeout != 60.0) timeouts += " --hello-timeout " + round_trip_text(f->hello_timeout);
-        m.replay = [=](std::size_t, const Camera& camera) {
-          return "cullcheck gate " + scene_flags + " --subject " + shell_quote(command) + timeouts + " --camera " + camera_text(camera);
+        // The subject is asked the failing frame alone, with its own index and time (a temporal
+        // culler may depend on them): from the path when there is one, else the camera.
+        const std::string path_flags = f->camera.empty() ? " " + f->path.replay_flags() : "";
+        m.replay = [=](std::size_t frame, const Camera& camera) {
+          return "cullcheck gate " + scene_flags + " --subject " + shell_quote(command) + timeouts +
+                 (path_flags.empty() ? " --camera " + camera_text(camera) : path_flags + " --frame " + std::to_string(frame));
         };
         methods.push_back(std::move(m));
       } catch (const SubjectError& e) {

@@ -16,6 +16,7 @@
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
 #include "core/errors.hpp"
+#include "subjects/subject_error.hpp"
 
 int main(int argc, char** argv) {
   namespace cli = cullcheck::cli;
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
     for (const auto& [sub, run] : subcommands)
       if (*sub) return run();
   } catch (const cullcheck::InputError& e) {
+    std::cerr << "cullcheck: " << e.what() << "\n";
+    return cli::kExitBadInput;
+  } catch (const cullcheck::SubjectError& e) {  // an outside program under test is bad input too
     std::cerr << "cullcheck: " << e.what() << "\n";
     return cli::kExitBadInput;
   } catch (const std::invalid_argument& e) {

@@ -35,7 +35,7 @@ Runner add_report(CLI::App& app) {
     ClaimSearchOptions claim_options;
     std::vector<int> scaling_grids;
     int scaling_frames = 1000;
-    bool table_41 = false, view_cells = false, vbaoi_section = false;
+    bool table_41 = false, view_cells = false, vbaoi_section = false, no_pixels = false;
     ViewCellOptions view_cell_options;
     std::string view_cell_sampling = "boundary,tiled";
     SceneSource vbaoi_city{"manhattan", 1, R"({"blocks_x":41,"blocks_y":41})", ""};
@@ -56,6 +56,7 @@ Runner add_report(CLI::App& app) {
       ->check(CLI::Range(1e-6, 1e4));
   sub->add_option("--method", f->methods, "Comma-separated methods, or 'all'")->capture_default_str();
   sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
+  sub->add_flag("--no-pixels", f->no_pixels, "Skip the pixel oracle (misdrawn pixels per method at every checked frame)");
   sub->add_option("--junit", f->junit, "Also write the gate's checks as JUnit XML (one test case per method and check)");
   sub->add_option("--oracle-stride", f->oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
   sub->add_option("--claim-scenes", f->claim_options.scenes, "Scenes searched per claim")->capture_default_str();
@@ -114,6 +115,7 @@ Runner add_report(CLI::App& app) {
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.oracle_stride = f->oracle_stride;
+    options.pixels = !f->no_pixels;
     options.path_replay_flags = f->path.replay_flags();
     options.region_methods = parse_methods(f->regions.methods, region_method_names());
     options.region_radius = f->regions.radius;
