@@ -204,6 +204,50 @@ nlohmann::json fuzz_json(const FuzzResult& r) {
   return j;
 }
 
+std::string fuzz_summary(const FuzzResult& r, const std::string& dir) {
+  std::ostringstream out;
+  out << "fuzz " << r.subject_name << " (" << (r.ready.claim.conservative ? "conservative" : "approximate") << "): " << r.cases
+      << " cases";
+  const char* sep = " (";
+  for (const auto& [kind, n] : r.kinds) out << sep << kind << " " << n, sep = ", ";
+  out << (r.kinds.empty() ? "" : ")") << "\n";
+  if (!r.failure) {
+    out << "passed " << r.cases << " cases in " << r.seconds_total << " s\n";
+    return out.str();
+  }
+  const FuzzFailure& f = *r.failure;
+  out << "FAILED after " << r.cases << " cases (" << r.seconds_to_failure << " s); shrunk in " << r.shrink_runs << " more runs ("
+      << r.shrinks_accepted << " accepted) to " << f.objects << " objects, " << f.triangles << " triangles, "
+      << f.minimal.path.frames.size() << " frames (" << f.minimal.kind << ")\n"
+      << "  " << f.message << "\n"
+      << "  counterexample: " << dir << "/ (replay: sh " << dir << "/replay.sh)\n";
+  return out.str();
+}
+
+ClaimCheck fuzz_claim(const FuzzResult& r, const std::string& replay) {
+  ClaimCheck c;
+  c.method = r.subject_name;
+  c.source = "declared by the subject, fuzzed (cullcheck fuzz)";
+  if (r.ready.claim.conservative) {
+    c.id = r.subject_name + "-conservative-fuzzed";
+    c.statement = "never culls an object the oracle sees, on any generated scene and pathological camera path";
+  } else {
+    c.id = r.subject_name + "-pixel-budget-fuzzed";
+    c.statement = "misdraws at most " + std::to_string(r.ready.claim.pixel_error_budget.value_or(0)) +
+                  " pixels in any frame, on any generated scene and pathological camera path";
+  }
+  c.frames_checked = static_cast<std::uint64_t>(r.cases);
+  c.holds = !r.failure;
+  c.search_seconds = r.failure ? r.seconds_to_failure : r.seconds_total;
+  if (r.failure) {
+    c.violations = 1;
+    c.counterexample_replay = replay;
+    c.counterexample_detail = r.failure->message + " (shrunk to " + std::to_string(r.failure->objects) + " objects, " +
+                              std::to_string(r.failure->minimal.path.frames.size()) + " frames, " + r.failure->minimal.kind + ")";
+  }
+  return c;
+}
+
 std::string write_counterexample(const FuzzResult& result, const FuzzOptions& options, const std::string& dir) {
   namespace fs = std::filesystem;
   if (!result.failure) return "";

@@ -17,6 +17,7 @@
 
 #include "generators/fuzz_cases.hpp"
 #include "oracle/sampling.hpp"
+#include "reports/claims.hpp"
 #include "reports/verification.hpp"
 #include "subjects/protocol.hpp"
 
@@ -64,5 +65,10 @@ FuzzResult fuzz_subject(const FuzzOptions& options);
 std::string write_counterexample(const FuzzResult& result, const FuzzOptions& options, const std::string& dir);
 
 nlohmann::json fuzz_json(const FuzzResult& result);
+// The lines `cullcheck fuzz` prints: cases by kind, and the shrunk failure.
+std::string fuzz_summary(const FuzzResult& result, const std::string& counterexample_dir);
+// The claims ledger's entry: the subject's declared claim, refuted by the fuzzer's counterexample
+// (`replay`) or holding over the budget.
+ClaimCheck fuzz_claim(const FuzzResult& result, const std::string& replay);
 
 }  // namespace cullcheck

@@ -40,24 +40,14 @@ Runner add_fuzz(CLI::App& app) {
     f->fuzz.sampling = f->sampling.sampling;
     f->fuzz.pixels = !f->no_pixels;
     const FuzzResult r = fuzz_subject(f->fuzz);
-    std::cout << "fuzz " << r.subject_name << " (" << (r.ready.claim.conservative ? "conservative" : "approximate") << "), seed "
-              << f->fuzz.seed << ": " << r.cases << " cases";
-    for (const auto& [kind, n] : r.kinds) std::cout << (kind == r.kinds.begin()->first ? " (" : ", ") << kind << " " << n;
-    std::cout << (r.kinds.empty() ? "" : ")") << "\n";
     nlohmann::json doc = fuzz_json(r);
     int code = 0;
     if (r.failure) {
-      const std::string replay = write_counterexample(r, f->fuzz, f->out);
-      std::cout << "FAILED after " << r.cases << " cases (" << r.seconds_to_failure << " s); shrunk in " << r.shrink_runs
-                << " more runs to " << r.failure->objects << " objects, " << r.failure->triangles << " triangles, "
-                << r.failure->minimal.path.frames.size() << " frames (" << r.failure->minimal.kind << ")\n"
-                << "  " << r.failure->message << "\n"
-                << "  counterexample: " << f->out << "/ (replay: sh " << f->out << "/replay.sh)\n";
+      write_counterexample(r, f->fuzz, f->out);
       doc["counterexample"] = f->out;
       code = kExitGateFailed;
-    } else {
-      std::cout << "passed " << r.cases << " cases in " << r.seconds_total << " s\n";
     }
+    std::cout << fuzz_summary(r, f->out);
     if (!f->output.empty()) write_text_file_atomically(f->output, doc.dump(2) + "\n");
     return code;
   };

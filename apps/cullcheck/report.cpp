@@ -5,10 +5,13 @@
 #include <optional>
 
 #include "apps/cullcheck/flags.hpp"
+#include "apps/cullcheck/subject_flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
 #include "core/scene_io.hpp"
 #include "reports/claims.hpp"
 #include "reports/delta_claims.hpp"
+#include "reports/fuzzing.hpp"
+#include "reports/subject_claims.hpp"
 #include "reports/gate_verdict.hpp"
 #include "reports/junit.hpp"
 #include "reports/region_sweep.hpp"
@@ -36,6 +39,9 @@ Runner add_report(CLI::App& app) {
     std::vector<int> scaling_grids;
     int scaling_frames = 1000;
     bool table_41 = false, view_cells = false, vbaoi_section = false, no_pixels = false;
+    SubjectFlags subjects;
+    FuzzOptions fuzz;
+    std::string fuzz_out = "cullcheck-counterexample";
     ViewCellOptions view_cell_options;
     std::string view_cell_sampling = "boundary,tiled";
     SceneSource vbaoi_city{"manhattan", 1, R"({"blocks_x":41,"blocks_y":41})", ""};
@@ -49,6 +55,13 @@ Runner add_report(CLI::App& app) {
   f->sampling.add(*sub);
   f->tuning.add(*sub);
   f->regions.add(*sub, "all");
+  f->subjects.add(*sub, /*inline_visible=*/false);
+  sub->add_option("--fuzz-subject", f->fuzz.subject,
+                  "Also fuzz this subject (like `cullcheck fuzz`), into report.json's \"fuzz\" and the claims ledger; its "
+                  "counterexample goes to --fuzz-out");
+  sub->add_option("--fuzz-budget", f->fuzz.budget, "Cases the fuzzed subject must pass")->capture_default_str();
+  sub->add_option("--fuzz-seed", f->fuzz.seed, "Seed of the fuzzer's cases")->capture_default_str();
+  sub->add_option("--fuzz-out", f->fuzz_out, "Folder for the fuzzer's minimal counterexample")->capture_default_str();
   sub->add_option("--region-sweep", f->region_sweep_radii,
                      "Also run every region method along the path at each of these disc radii (m), e.g. "
                      "0.25,0.5,1,1.41,2,4: PVS size, frames each PVS serves and its cost, into report.json's \"region_sweep\"")
@@ -121,10 +134,18 @@ Runner add_report(CLI::App& app) {
     options.region_radius = f->regions.radius;
     options.region_turn = f->regions.turn;
     options.region_on_tiling = f->regions.placement == "tiling";
-    const std::vector<std::string> methods = parse_methods(f->methods);
+    std::vector<std::pair<std::string, std::string>> skipped;
+    std::vector<MethodUnderTest> methods =
+        builtin_methods(scene, f->scene.source, parse_methods(f->methods), f->tuning.options, options, &skipped);
+    std::optional<Abort> aborted;
+    f->subjects.build(scene, f->scene.source, path, f->path.replay_flags(), methods, aborted);
     std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
               << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
-    const PathVerification v = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
+    PathVerification v;
+    if (!aborted) v = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
+    v.aborted = v.aborted ? v.aborted : aborted;
+    v.skipped_methods.insert(v.skipped_methods.begin(), skipped.begin(), skipped.end());
+    methods.clear();  // subjects say bye and exit here
     f->claim_options.sampling = f->sampling.sampling;
     ReportInputs in;
     in.method_options = f->tuning.options;
@@ -133,7 +154,8 @@ Runner add_report(CLI::App& app) {
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
     in.verification = &v;
-    in.claims = check_shadow_elevation_rule(f->claim_options);
+    in.claims = subject_claims(v);
+    for (ClaimCheck& c : check_shadow_elevation_rule(f->claim_options)) in.claims.push_back(std::move(c));
     for (ClaimCheck& c : check_image_space_pitch_roll(f->claim_options)) in.claims.push_back(std::move(c));
     for (ClaimCheck& c : check_delta_horizon_claims(f->claim_options)) in.claims.push_back(std::move(c));
     for (ClaimCheck& c : check_shrinking_claims(f->claim_options)) in.claims.push_back(std::move(c));
@@ -179,6 +201,20 @@ Runner add_report(CLI::App& app) {
       scaling.frames = f->scaling_frames;
       document["scaling"] = run_scaling(scaling);
       std::cout << scaling_table(document["scaling"]);
+    }
+    if (!f->fuzz.subject.empty()) {
+      f->fuzz.sampling = f->sampling.sampling;
+      const FuzzResult fuzzed = fuzz_subject(f->fuzz);
+      document["fuzz"] = fuzz_json(fuzzed);
+      std::string replay;
+      if (fuzzed.failure) {
+        replay = write_counterexample(fuzzed, f->fuzz, f->fuzz_out);
+        document["fuzz"]["counterexample"] = f->fuzz_out;
+      }
+      std::cout << fuzz_summary(fuzzed, f->fuzz_out);
+      const ClaimCheck claim = fuzz_claim(fuzzed, replay);
+      document["claims"].push_back(to_json(claim));
+      in.claims.push_back(claim);
     }
     // The gate in the document says what the exit code says: sections' violations count too.
     const GateVerdict verdict = gate_verdict(v, f->scene.source.replay_flags(), {}, section_violations);

@@ -19,8 +19,9 @@ int main() {
   };
   std::string line;
   if (!std::getline(std::cin, line)) return 1;
+  const json hello = json::parse(line);
   std::vector<Sphere> spheres;
-  for (const json& o : json::parse(line)["scene"]["objects"]) {
+  for (const json& o : hello["scene"]["objects"]) {
     const json& b = o["bounds"];
     Sphere s{o["id"], {}, 0.0};
     for (int a = 0; a < 3; ++a) {

@@ -1,0 +1,39 @@
+// Flags that name outside subjects (gate and report): programs over the subject protocol,
+// recorded visible-set files and one camera's inline visible set, and how their failures replay.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "apps/cullcheck/flags.hpp"
+#include "reports/verification.hpp"
+#include "subjects/protocol.hpp"
+#include "subjects/scene_files.hpp"
+
+namespace cullcheck::cli {
+
+struct SubjectFlags {
+  std::vector<std::string> subjects, pvs_files;
+  std::string visible, claims = "conservative", work_dir;
+  std::int64_t pixel_budget = -1;
+  double frame_timeout = 10.0, hello_timeout = 60.0;
+  bool keep_work_dir = false;
+
+  // `inline_visible`: also --visible/--claims/--pixel-budget (gate only).
+  void add(CLI::App& app, bool inline_visible);
+  bool any() const { return !subjects.empty() || !pvs_files.empty() || !visible.empty(); }
+
+  // Appends a method per subject to `methods`. `path_flags` rebuild the path (empty when the run
+  // is one camera); a program that fails its handshake sets `aborted` and is not added.
+  void build(const Scene& scene, const SceneSource& source, const CameraPath& path, const std::string& path_flags,
+             std::vector<MethodUnderTest>& methods, std::optional<Abort>& aborted);
+
+ private:
+  std::unique_ptr<WorkDir> work_;
+};
+
+}  // namespace cullcheck::cli
