@@ -2,6 +2,7 @@
 
 #include <sys/utsname.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <numeric>
 #include <thread>
@@ -230,13 +231,15 @@ nlohmann::json build_report(const ReportInputs& in) {
 
 std::string summary_table(const PathVerification& v) {
   std::string out;
-  char line[256];
-  std::snprintf(line, sizeof line, "%-20s %7s %9s %9s %9s %10s %8s %10s\n", "method", "frames", "ms_med", "ms_p95",
+  char line[512];
+  int width = 20;  // the method column fits the longest name (outside subjects' names can be long)
+  for (const MethodRun& r : v.runs) width = std::max(width, static_cast<int>(std::min<std::size_t>(r.method.size(), 60)));
+  std::snprintf(line, sizeof line, "%-*s %7s %9s %9s %9s %10s %8s %10s\n", width, "method", "frames", "ms_med", "ms_p95",
                 "pvs_mean", "witnessed", "overest", "violations");
   out += line;
   for (const MethodRun& r : v.runs) {
     const double witnessed = mean(r.witnessed_size);
-    std::snprintf(line, sizeof line, "%-20s %7zu %9.3f %9.3f %9.1f %10.1f %8.2f %10llu%s\n", r.method.c_str(),
+    std::snprintf(line, sizeof line, "%-*s %7zu %9.3f %9.3f %9.1f %10.1f %8.2f %10llu%s\n", width, r.method.c_str(),
                   r.cull_ms.size(), median(r.cull_ms), percentile(r.cull_ms, 95), mean(r.pvs_size), witnessed,
                   ratio(mean(r.checked_pvs_size), witnessed), static_cast<unsigned long long>(r.violation_count),
                   r.claims_conservative ? "" : " (not claimed conservative)");
