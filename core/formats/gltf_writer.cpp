@@ -181,10 +181,10 @@ tinygltf::Model scene_model(const Scene& scene) {
                Value(std::move(mesh_extras)));
   }
   for (const MeshObject& m : scene.meshes) {
-    auto extras = [&] {
-      return Value(Value::Object{{"cullcheck_id", id_value(m.id)}, {"kind", Value(std::string("mesh"))}});
-    };
-    add_object(model, buffers, m, detail::mesh_name(m.id), extras(), extras());
+    Value::Object extras{{"cullcheck_id", id_value(m.id)}, {"kind", Value(std::string("mesh"))}};
+    Value::Object mesh_extras = extras;
+    if (!m.name.empty()) extras.emplace("name", Value(m.name));  // the node is named mesh_<id>
+    add_object(model, buffers, m, detail::mesh_name(m.id), Value(std::move(extras)), Value(std::move(mesh_extras)));
   }
 
   if (buffers.positions.size() + buffers.indices.size() > (std::size_t{1} << 32) - (std::size_t{1} << 28))

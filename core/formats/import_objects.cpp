@@ -73,6 +73,10 @@ GivenExtras parse_given_extras(const std::string& extras_json, const std::string
       throw InputError(object, "extras.kind", "must be \"building\" or \"mesh\" (got " + it->dump() + ")");
     given.kind_mesh = *it == "mesh";
   }
+  if (auto it = j.find("name"); it != j.end()) {
+    if (!it->is_string()) throw InputError(object, "extras.name", "must be a string");
+    given.name = it->get<std::string>();
+  }
   const auto fp = j.find("footprint");
   const auto height = j.find("height");
   if ((fp == j.end()) != (height == j.end()))
@@ -130,7 +134,7 @@ Scene finish_import(std::vector<ImportedObject> objects, Scene scene, const Impo
   for (std::size_t i = 0; i < objects.size(); ++i) {
     MeshObject& m = objects[i].mesh;
     m.id = *ids[i];
-    m.name = objects[i].name;
+    m.name = objects[i].given.name.value_or(objects[i].name);
     if (objects[i].given.prism) objects[i].given.prism->id = m.id;
     try {
       r.degenerate_triangles_dropped += validate_and_finish(m, true);

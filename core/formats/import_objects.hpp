@@ -11,11 +11,12 @@
 
 namespace cullcheck::formats::detail {
 
-// Extras our own writer gives an object: "cullcheck_id", "kind", and for a building "footprint"
-// and "height" (scene-local, z up).
+// Extras our own writer gives an object: "cullcheck_id", "kind", for a building "footprint" and
+// "height" (scene-local, z up), for a named mesh object its "name".
 struct GivenExtras {
   std::optional<std::uint64_t> id;
   bool kind_mesh = false;             // "kind": "mesh": the writer says it was a mesh object
+  std::optional<std::string> name;    // "name": a mesh object's own name (MeshObject::name)
   std::optional<Building> prism;      // not yet validated
 };
 

@@ -9,8 +9,9 @@
 //   write_glb            one node per object under a root node `cullcheck_scene` whose matrix
 //                        turns cullcheck's z up into glTF's +Y up; node extras {"cullcheck_id",
 //                        "kind"} and, for a building, its "footprint" and "height", so that a
-//                        re-import recovers the very same prism; asset extras "cullcheck" hold the
-//                        world origin and the provenance. Byte-deterministic. (gltf_writer.cpp)
+//                        re-import recovers the very same prism (for a mesh object its "name");
+//                        asset extras "cullcheck" hold the world origin and the provenance.
+//                        Byte-deterministic. (gltf_writer.cpp)
 //   write_obj            Assimp's OBJ exporter ("objnomtl"): one `g building_<id>` group per
 //                        object, z up, scene-local; a header comment gives the world origin.
 //                        (obj_writer.cpp)
@@ -29,8 +30,10 @@
 //    order. Two objects with one id are an InputError naming both.
 //  - Triangles of zero area are dropped and counted (validate_and_finish(m, true)).
 //  - With detect_prisms, a mesh that is a vertical prism becomes a Building (so 2.5D methods run
-//    on imported cities); extras footprint/height, when present and consistent with the mesh,
-//    are used as given; the rest stay MeshObjects.
+//    on imported cities); extras footprint/height, when present and consistent with the mesh
+//    (every vertex on the prism's outline at z = 0 or h, the same bounds), are used as given;
+//    extras "kind": "mesh" (our writer's word that it was a mesh object) keeps a mesh a mesh;
+//    the rest stay MeshObjects.
 //  - Far-from-origin scenes are rebased (rebase_if_far) before prisms are detected.
 // Malformed files raise InputError naming the file, the node or mesh and the field.
 #pragma once
