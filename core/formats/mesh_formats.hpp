@@ -27,7 +27,9 @@
 // Every importer applies the same rules (import_objects.cpp):
 //  - Ids: the source's extras "cullcheck_id" if present; else a name `building_<n>`, `mesh_<n>`,
 //    `object_<n>` or all digits gives n; else the next free id after the largest taken, in file
-//    order. Two objects with one id are an InputError naming both.
+//    order (node, mesh or group index). Two objects with one id are an InputError naming both.
+//    The source is the node (IdSource::node; its name, or its mesh's when it has none) or the
+//    glTF mesh (IdSource::mesh), or the OBJ group; its name is kept in MeshObject::name.
 //  - Triangles of zero area are dropped and counted (validate_and_finish(m, true)).
 //  - With detect_prisms, a mesh that is a vertical prism becomes a Building (so 2.5D methods run
 //    on imported cities); extras footprint/height, when present and consistent with the mesh
@@ -68,7 +70,7 @@ struct ImportReport {
 };
 
 // Limits beside core's kMax* (core/scene_io.hpp): absurd files are errors, not out-of-memory.
-inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{4} << 30;   // 4 GiB (.glb's own limit)
+inline constexpr std::size_t kMaxSceneFileBytes = 0xFFFFFFFF;  // 4 GiB - 1 (.glb's own limit; tinygltf's too)
 inline constexpr std::size_t kMaxTrianglesPerObject = 100'000'000;
 inline constexpr std::size_t kMaxNodes = 50'000'000;
 

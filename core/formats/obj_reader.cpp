@@ -1,9 +1,11 @@
 // Wavefront OBJ import (mesh_formats.hpp: read_obj), through tinyobjloader's double-precision
 // build (tinyobjloader::tinyobjloader_double), so UTM-size coordinates keep their millimetres.
 //
-// tinyobjloader reads a number it cannot parse ("nan", "1e999" overflowing) as 0 without a word;
-// a short scan of the `v` lines first refuses such files instead of loading a silently different
-// scene. The same scan picks up the world origin our writer puts in a comment.
+// tinyobjloader reads a number it cannot parse ("nan", "1e999" overflowing) as 0 without a word,
+// and its own number parser is not correctly rounded (5000000.123 comes out an ulp off); a short
+// scan of the `v` lines first refuses such files instead of loading a silently different scene,
+// and its strtod values (correctly rounded) replace tinyobjloader's when both saw the same
+// vertices. The same scan picks up the world origin our writer puts in a comment.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -24,9 +26,15 @@ static_assert(std::is_same_v<tinyobj::real_t, double>,
 namespace cullcheck::formats {
 namespace {
 
-// Every `v x y z` line holds three finite numbers; returns the origin comment's value, if any.
-std::optional<Vec2> scan_vertex_lines(const std::string& text, const std::string& file) {
-  std::optional<Vec2> origin;
+struct VertexScan {
+  std::vector<double> xyz;     // every `v` line's x, y, z, in file order
+  std::optional<Vec2> origin;  // from our writer's comment
+};
+
+// Every `v x y z` line holds three finite numbers.
+VertexScan scan_vertex_lines(const std::string& text, const std::string& file) {
+  VertexScan scan;
+  std::optional<Vec2>& origin = scan.origin;
   std::size_t line_no = 0, vertices = 0;
   for (std::size_t at = 0; at < text.size();) {
     std::size_t end = text.find('\n', at);
@@ -43,6 +51,7 @@ std::optional<Vec2> scan_vertex_lines(const std::string& text, const std::string
           throw InputError(file, "line " + std::to_string(line_no) + " (v)", "needs three numbers x y z");
         if (!std::isfinite(x))
           throw InputError(file, "line " + std::to_string(line_no) + " (v)", "coordinate " + std::to_string(k) + " is not finite");
+        scan.xyz.push_back(x);
         p = next;
       }
       if (++vertices > kMaxMeshVertices)
@@ -59,7 +68,7 @@ std::optional<Vec2> scan_vertex_lines(const std::string& text, const std::string
     }
     at = end + 1;
   }
-  return origin;
+  return scan;
 }
 
 }  // namespace
@@ -73,7 +82,8 @@ Scene read_obj(const std::string& path, const ImportOptions& options, ImportRepo
 
   Scene scene;
   scene.provenance.generator = "file";
-  if (auto origin = scan_vertex_lines(text, path)) scene.origin = *origin;
+  const VertexScan scan = scan_vertex_lines(text, path);
+  if (scan.origin) scene.origin = *scan.origin;
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
@@ -88,7 +98,9 @@ Scene read_obj(const std::string& path, const ImportOptions& options, ImportRepo
   ImportReport& r = report ? *report : local;
   if (!reader.Warning().empty()) r.notes.push_back("tinyobjloader: " + reader.Warning());
 
-  const std::vector<double>& xyz = reader.GetAttrib().vertices;
+  const std::vector<double>& parsed = reader.GetAttrib().vertices;
+  const std::vector<double>& xyz = scan.xyz.size() == parsed.size() ? scan.xyz : parsed;
+  if (&xyz == &parsed) r.notes.push_back("vertex scan and tinyobjloader disagree on the vertex count; tinyobjloader's values used");
   const std::size_t vertex_count = xyz.size() / 3;
   std::vector<detail::ImportedObject> objects;
   const auto& shapes = reader.GetShapes();
