@@ -108,6 +108,8 @@ TEST(FormatsRoundTrip, ManhattanObjGivesTheSameIdsAndTrianglesWithinFloatRoundin
   const std::string path = scratch_path("manhattan.obj");
   write_obj(scene, path);
   const std::string text = file_bytes(path);
+  write_obj(small_manhattan(), path);
+  EXPECT_EQ(file_bytes(path), text);  // deterministic
   EXPECT_NE(text.find("\ng building_0\n"), std::string::npos);  // one group per object, named
   EXPECT_NE(text.find("# cullcheck origin: 0 0\n"), std::string::npos);
 
@@ -168,7 +170,11 @@ TEST(FormatsRoundTrip, OpeningsMeshesStayMeshes) {
     for (std::size_t i = 0; i < m.vertices.size(); ++i)  // float32 vertices: 1 mm survives
       EXPECT_LT(length(c->vertices[i] - m.vertices[i]), 1e-5) << "mesh " << m.id << " vertex " << i;
   }
-  for (const Building& b : scene.buildings) EXPECT_EQ(back.find(b.id)->footprint, b.footprint);  // given: exact
+  for (const Building& b : scene.buildings) {  // given: exact
+    const Building* c = back.find(b.id);
+    ASSERT_NE(c, nullptr) << b.id;
+    EXPECT_EQ(c->footprint, b.footprint);
+  }
 
   const std::string obj = scratch_path("openings.obj");
   write_obj(scene, obj);
@@ -177,7 +183,11 @@ TEST(FormatsRoundTrip, OpeningsMeshesStayMeshes) {
   EXPECT_EQ(obj_report.prisms_detected, 123u);
   EXPECT_EQ(obj_report.meshes_kept, 19u);
   EXPECT_EQ(from_obj.ids(), scene.ids());
-  for (const MeshObject& m : scene.meshes) EXPECT_EQ(from_obj.find_mesh(m.id)->triangles.size(), m.triangles.size());
+  for (const MeshObject& m : scene.meshes) {
+    const MeshObject* c = from_obj.find_mesh(m.id);
+    ASSERT_NE(c, nullptr) << m.id;
+    EXPECT_EQ(c->triangles.size(), m.triangles.size());
+  }
 }
 
 TEST(FormatsRoundTrip, AnyFileByExtension) {
