@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev
   librapidcheck-dev libbenchmark-dev libgtest-dev libgmock-dev
   nlohmann-json3-dev libcli11-dev libspng-dev
+  libtinygltf-dev libtinyobjloader-dev libassimp-dev
 )
 missing=()
 for p in "${packages[@]}"; do

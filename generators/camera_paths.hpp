@@ -107,7 +107,7 @@ void validate(const PlazaCrossingParams& p);
 // Walks the streets of the Manhattan grid that manhattan_city(city, ...) builds (any seed:
 // streets do not depend on the city's seed).
 CameraPath street_walk(const ManhattanParams& city, const StreetWalkParams& walk, std::uint64_t seed);
-// The same for a scene made by manhattan, plaza, default or thesis (streets read from its provenance);
+// The same for a scene made by manhattan, plaza, default, thesis or openings (streets read from its provenance);
 // InputError for any other scene.
 CameraPath street_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed);
 CameraPath fly_through(const Scene& scene, const FlyThroughParams& fly, std::uint64_t seed);

@@ -1,8 +1,8 @@
 // Seeded procedural cities (design: "generators/"). Every generator is a pure function of its
 // parameters and a 64-bit seed: the same pair gives a byte-identical scene on any machine
 // (hand-written distributions in random.hpp, coordinates on a 1 mm grid in grid_snap.hpp).
-// Every building goes through validate_and_finish(), the same rules a loaded scene obeys, and
-// ids are 0..n-1 in generation order. Each scene's provenance names the generator, the seed
+// Every building and mesh object goes through validate_and_finish(), the same rules a loaded
+// scene obeys, and ids are 0..n-1 in generation order (unique across buildings and meshes). Each scene's provenance names the generator, the seed
 // and the complete parameter set, so `--generator NAME --seed N --params JSON` rebuilds it.
 //
 // Generators (names accepted by make_city):
@@ -14,6 +14,11 @@
 //   scatter    rotated rectangles scattered without overlaps
 //   irregular  rotated, non-convex footprints (L, U, T) and convex polygons, no overlaps
 //   thesis     the thesis testbed (ch. 3.2): 400 x 400 buildings of 46 triangles each
+//   openings   what 2.5D prisms cannot express and real cullers get wrong (mesh objects): facade
+//              walls with doors and windows through them and a low object behind that only the
+//              openings show; arcades (upper floors on columns, open at street level: an
+//              overhang) with a low object beneath; bridges over streets, open beneath; among
+//              ordinary buildings (openings_city.cpp)
 #pragma once
 
 #include <cstdint>
@@ -152,6 +157,89 @@ struct ThesisParams {
   }
 };
 
+// A street grid (manhattan_layout.hpp's, centred on the origin) whose square blocks hold an inner
+// core of lots with ordinary buildings, four corner buildings, and along each of the four street
+// fronts a strip `frontage_depth` deep holding, drawn by weight, one of:
+//   facade  a wall slab at the street edge (a MeshObject, thickness and height drawn) cut into
+//           bays and storeys, with doors (ground floor) and windows through it, at least one on
+//           the ground floor; behind it a low building (target_*) lower than the wall, which a
+//           street-level eye sees only through the openings;
+//   arcade  a slab (upper floors, arcade_min/max_slab thick) held at a drawn clearance above the
+//           street by a row of columns along the street edge (one MeshObject), with a low
+//           building under the overhang;
+//   plain   one to three ordinary buildings.
+// bridge_count bridges (MeshObject decks, drawn among the streets between two blocks) span a
+// street from one block's core to the other's at a drawn height, over both blocks' strips, which
+// are then left empty. Every object is `setback` clear of every other. Lengths in metres.
+struct OpeningsParams {
+  int blocks_x = 3;
+  int blocks_y = 3;
+  double block_size = 48.0;
+  double street_width = 14.0;
+  double frontage_depth = 8.0;
+  int core_buildings = 4;            // lots of the inner core, one building each
+  double setback = 0.5;              // least gap between two objects (and to a lot's edge)
+  double min_height = 8.0;           // core, corner and plain buildings
+  double max_height = 30.0;
+  double facade_weight = 0.4;        // chances of each frontage kind
+  double arcade_weight = 0.3;
+  double plain_weight = 0.3;
+  double wall_min_thickness = 0.2;
+  double wall_max_thickness = 0.6;
+  double wall_min_height = 6.0;
+  double wall_max_height = 12.0;
+  double storey_height = 3.0;
+  double bay_width = 3.0;            // a wall is cut into bays about this wide, one opening at most each
+  double door_fraction = 0.3;        // ground-floor bays with a door (else maybe a window)
+  double door_min_width = 0.9;
+  double door_max_width = 2.0;
+  double door_min_height = 2.0;
+  double door_max_height = 2.6;
+  double window_fraction = 0.6;      // bays of each storey with a window
+  double window_min_width = 0.8;
+  double window_max_width = 2.0;
+  double window_min_height = 0.8;
+  double window_max_height = 1.6;
+  double sill_height = 0.9;          // window bottom above its storey's floor
+  double target_min_height = 1.0;    // the low building behind a facade or under an arcade
+  double target_max_height = 2.5;
+  double arcade_min_clearance = 3.0; // open height under the arcade's slab
+  double arcade_max_clearance = 5.0;
+  double arcade_min_slab = 3.0;
+  double arcade_max_slab = 9.0;
+  double column_size = 0.5;
+  double column_spacing = 4.0;
+  int bridge_count = 2;
+  double bridge_min_height = 5.0;    // underside of the deck
+  double bridge_max_height = 15.0;
+  double bridge_thickness = 1.0;
+  double bridge_min_width = 3.0;
+  double bridge_max_width = 6.0;
+
+  template <class Self, class Visitor>
+  static void visit(Self& s, Visitor&& v) {
+    v("blocks_x", s.blocks_x), v("blocks_y", s.blocks_y), v("block_size", s.block_size);
+    v("street_width", s.street_width), v("frontage_depth", s.frontage_depth), v("core_buildings", s.core_buildings);
+    v("setback", s.setback), v("min_height", s.min_height), v("max_height", s.max_height);
+    v("facade_weight", s.facade_weight), v("arcade_weight", s.arcade_weight), v("plain_weight", s.plain_weight);
+    v("wall_min_thickness", s.wall_min_thickness), v("wall_max_thickness", s.wall_max_thickness);
+    v("wall_min_height", s.wall_min_height), v("wall_max_height", s.wall_max_height);
+    v("storey_height", s.storey_height), v("bay_width", s.bay_width);
+    v("door_fraction", s.door_fraction), v("door_min_width", s.door_min_width), v("door_max_width", s.door_max_width);
+    v("door_min_height", s.door_min_height), v("door_max_height", s.door_max_height);
+    v("window_fraction", s.window_fraction), v("window_min_width", s.window_min_width);
+    v("window_max_width", s.window_max_width), v("window_min_height", s.window_min_height);
+    v("window_max_height", s.window_max_height), v("sill_height", s.sill_height);
+    v("target_min_height", s.target_min_height), v("target_max_height", s.target_max_height);
+    v("arcade_min_clearance", s.arcade_min_clearance), v("arcade_max_clearance", s.arcade_max_clearance);
+    v("arcade_min_slab", s.arcade_min_slab), v("arcade_max_slab", s.arcade_max_slab);
+    v("column_size", s.column_size), v("column_spacing", s.column_spacing);
+    v("bridge_count", s.bridge_count), v("bridge_min_height", s.bridge_min_height);
+    v("bridge_max_height", s.bridge_max_height), v("bridge_thickness", s.bridge_thickness);
+    v("bridge_min_width", s.bridge_min_width), v("bridge_max_width", s.bridge_max_width);
+  }
+};
+
 // Defaults of the named Manhattan variants.
 ManhattanParams plaza_params();         // 8 x 8 blocks, 2 x 2 plaza, 6 kiosks
 ManhattanParams default_city_params();  // 12 x 12 blocks of 20 lots, 2 x 2 plaza: ~2,800 buildings
@@ -162,6 +250,7 @@ void validate(const ManhattanParams& p, const std::string& generator = "manhatta
 void validate(const ScatterParams& p, const std::string& generator = "scatter");
 void validate(const IrregularParams& p, const std::string& generator = "irregular");
 void validate(const ThesisParams& p, const std::string& generator = "thesis");
+void validate(const OpeningsParams& p, const std::string& generator = "openings");
 
 Scene manhattan_city(const ManhattanParams& p, std::uint64_t seed);
 Scene plaza_city(const ManhattanParams& p, std::uint64_t seed);  // requires a plaza
@@ -169,6 +258,7 @@ Scene default_city(std::uint64_t seed);
 Scene scatter_city(const ScatterParams& p, std::uint64_t seed);
 Scene irregular_city(const IrregularParams& p, std::uint64_t seed);
 Scene thesis_city(const ThesisParams& p, std::uint64_t seed);
+Scene openings_city(const OpeningsParams& p, std::uint64_t seed);
 
 // Dispatch by name. `params` is a JSON object overlaid on that generator's defaults (null or {}
 // for the defaults); unknown generator names, unknown parameter names, wrong types and bad
@@ -180,7 +270,7 @@ Scene make_city(const std::string& generator_name, std::uint64_t seed, const nlo
 // stored in Provenance::parameters_json.
 nlohmann::json resolved_city_params(const std::string& generator_name, const nlohmann::json& params);
 
-// The street grid of a scene made by manhattan, plaza, default or thesis (read back from its
+// The street grid of a scene made by manhattan, plaza, default, thesis or openings (read back from its
 // provenance), so camera paths can follow its streets; nullopt for other scenes.
 std::optional<ManhattanParams> manhattan_params_of(const Scene& scene);
 // The Manhattan street grid that a thesis city's streets coincide with (its blocks of

@@ -37,7 +37,7 @@ std::optional<ManhattanParams> manhattan_defaults(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& city_generator_names() {
-  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "kept"};
+  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "openings", "kept"};
   return names;
 }
 
@@ -46,6 +46,7 @@ nlohmann::json resolved_city_params(const std::string& name, const nlohmann::jso
   if (name == "scatter") return params_to_json(overlaid(ScatterParams{}, params, name));
   if (name == "irregular") return params_to_json(overlaid(IrregularParams{}, params, name));
   if (name == "thesis") return params_to_json(overlaid(ThesisParams{}, params, name));
+  if (name == "openings") return params_to_json(overlaid(OpeningsParams{}, params, name));
   if (name == "kept") return params_to_json(overlaid(KeptParams{}, params, name));
   unknown_generator(name);
 }
@@ -60,6 +61,7 @@ Scene make_city(const std::string& name, std::uint64_t seed, const nlohmann::jso
   if (name == "scatter") return scatter_city(overlaid(ScatterParams{}, params, name), seed);
   if (name == "irregular") return irregular_city(overlaid(IrregularParams{}, params, name), seed);
   if (name == "thesis") return thesis_city(overlaid(ThesisParams{}, params, name), seed);
+  if (name == "openings") return openings_city(overlaid(OpeningsParams{}, params, name), seed);
   if (name == "kept") return kept_city(overlaid(KeptParams{}, params, name));
   unknown_generator(name);
 }
@@ -75,6 +77,15 @@ std::optional<ManhattanParams> manhattan_params_of(const Scene& scene) {
     ThesisParams t;
     overlay_params_json(t, stored, "scene", "provenance.parameters of generator thesis");
     return thesis_street_grid(t);
+  }
+  if (scene.provenance.generator == "openings") {
+    // Its blocks stand on a Manhattan street grid; bridges pass over the streets above eye level.
+    OpeningsParams o;
+    overlay_params_json(o, stored, "scene", "provenance.parameters of generator openings");
+    validate(o);
+    ManhattanParams m;
+    m.blocks_x = o.blocks_x, m.blocks_y = o.blocks_y, m.block_size = o.block_size, m.street_width = o.street_width;
+    return m;
   }
   std::optional<ManhattanParams> p = manhattan_defaults(scene.provenance.generator);
   if (!p) return std::nullopt;

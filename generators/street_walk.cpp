@@ -247,7 +247,7 @@ CameraPath street_walk(const ManhattanParams& city, const StreetWalkParams& walk
 CameraPath street_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed) {
   const std::optional<ManhattanParams> city = manhattan_params_of(scene);
   if (!city)
-    throw InputError("path", "kind", "street_walk needs a scene from the manhattan, plaza or default generator (this one is from '" +
+    throw InputError("path", "kind", "street_walk needs a scene from the manhattan, plaza, default, thesis or openings generator (this one is from '" +
                                          scene.provenance.generator + "')");
   return street_walk(*city, walk, seed);
 }

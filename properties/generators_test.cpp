@@ -284,7 +284,7 @@ TEST(Cities, BadParametersAreTypedErrors) {
   expect_error("kept", {{"case", "no_such_case"}}, "case");
   expect_error("kept", {{"case", 3}}, "case");
   EXPECT_NO_THROW(make_city("kept", 0, {{"case", "slab_across_the_disc"}}));
-  EXPECT_EQ(city_generator_names().size(), 7u);
+  EXPECT_EQ(city_generator_names().size(), 8u);
 }
 
 // --- Camera paths ---------------------------------------------------------------------------------

@@ -11,7 +11,12 @@
 namespace cullcheck {
 
 Scene SceneSource::load() const {
-  if (!file.empty()) return read_scene_file(file);
+  if (!file.empty()) {
+    formats::ImportOptions options;
+    options.ids = mesh_ids;
+    options.obj_up = obj_up;
+    return formats::read_scene_file_any(file, options);
+  }
   nlohmann::json params;
   try {
     params = nlohmann::json::parse(parameters_json);
@@ -35,7 +40,12 @@ std::string shell_quote(const std::string& text) {
 }
 
 std::string SceneSource::replay_flags() const {
-  if (!file.empty()) return "--scene " + shell_quote(file);
+  if (!file.empty()) {
+    std::string flags = "--scene " + shell_quote(file);
+    if (mesh_ids != formats::IdSource::node) flags += " --mesh-ids mesh";
+    if (obj_up != formats::UpAxis::z) flags += " --obj-up y";
+    return flags;
+  }
   std::string flags = "--generator " + generator + " --seed " + std::to_string(seed);
   if (parameters_json != "{}" && !parameters_json.empty()) flags += " --params " + shell_quote(parameters_json);
   return flags;

@@ -1,11 +1,12 @@
-// Where a run's scene comes from: a named generator with seed and parameters, or a scene file.
-// It rebuilds the scene and prints the command-line flags that rebuild it, which every replay
-// line carries.
+// Where a run's scene comes from: a named generator with seed and parameters, or a scene file
+// (scene JSON, glTF .glb/.gltf or OBJ: core/formats/mesh_formats.hpp). It rebuilds the scene and
+// prints the command-line flags that rebuild it, which every replay line carries.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "core/formats/mesh_formats.hpp"
 #include "core/scene.hpp"
 
 namespace cullcheck {
@@ -15,9 +16,13 @@ struct SceneSource {
   std::uint64_t seed = 1;
   std::string parameters_json = "{}";  // overlaid on the generator's defaults
   std::string file;                    // when set, the scene is read from this file instead
+  // How a mesh file's objects are read (formats::ImportOptions; --mesh-ids node|mesh, --obj-up y|z).
+  formats::IdSource mesh_ids = formats::IdSource::node;
+  formats::UpAxis obj_up = formats::UpAxis::z;
 
   Scene load() const;
-  // e.g. "--generator plaza --seed 7 --params '{\"blocks_x\":2}'" or "--scene city.json"
+  // e.g. "--generator plaza --seed 7 --params '{\"blocks_x\":2}'", "--scene city.json" or
+  // "--scene city.glb --mesh-ids mesh" (the import flags only when not the defaults)
   std::string replay_flags() const;
 };
 
