@@ -389,31 +389,6 @@ CameraPath path_from_json_text(const std::string& text) {
   return path;
 }
 
-void write_obj(const Scene& scene, std::ostream& out) {
-  out << "# cullcheck scene: generator " << scene.provenance.generator << ", seed " << scene.provenance.seed << ", "
-      << scene.buildings.size() << " buildings\n";
-  char line[128];
-  std::size_t base = 1;
-  for (const Building& b : scene.buildings) {
-    out << "o building_" << b.id << "\n";
-    const std::size_t n = b.footprint.size();
-    for (Vec2 p : b.footprint) {
-      std::snprintf(line, sizeof line, "v %.9g %.9g 0\nv %.9g %.9g %.9g\n", p.x, p.y, p.x, p.y, b.height);
-      out << line;
-    }
-    for (std::size_t i = 0; i < n; ++i) {  // walls: bottom i, top i, bottom j, top j
-      const std::size_t j = (i + 1) % n;
-      const std::size_t bi = base + 2 * i, ti = bi + 1, bj = base + 2 * j, tj = bj + 1;
-      out << "f " << bi << ' ' << bj << ' ' << tj << "\nf " << bi << ' ' << tj << ' ' << ti << "\n";
-    }
-    // Roof: one polygon face; viewers triangulate it (it may be non-convex).
-    out << "f";
-    for (std::size_t i = 0; i < n; ++i) out << ' ' << base + 2 * i + 1;
-    out << "\n";
-    base += 2 * n;
-  }
-}
-
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("file " + path, "(file)", "cannot be opened for reading");

@@ -1,4 +1,4 @@
-// Scene, camera and path (de)serialisation: JSON for everything, OBJ export for viewing.
+// Scene, camera and path (de)serialisation as JSON (mesh formats, glTF and OBJ: core/formats/).
 //
 // Scene JSON (format "cullcheck-scene", version 1):
 //   {"format": "cullcheck-scene", "version": 1,
@@ -62,8 +62,6 @@ std::string camera_to_json_text(const Camera& camera);
 Camera camera_from_json_text(const std::string& text, const std::string& object = "camera");
 std::string path_to_json_text(const CameraPath& path);
 CameraPath path_from_json_text(const std::string& text);
-
-void write_obj(const Scene& scene, std::ostream& out);
 
 // Whole-file helpers that raise InputError naming the file when it cannot be read or written;
 // writes go to a temporary file that is renamed, so a failure never truncates existing output.

@@ -51,11 +51,26 @@ inline void showValue(const FuzzCase& c, std::ostream& os) { os << c; }
 
 namespace rcgen {
 
-// The fuzzer's scenes: the properties' small cities, and mesh scenes with openings when the
-// openings generator exists (`with_openings`).
+// Mesh scenes with openings (generators/openings_city.cpp): 1-2 x 1-2 blocks, facades with doors
+// and windows, arcades and bridges by weight (each may shrink to none).
+inline rc::Gen<SceneSpec> openings_spec() {
+  using detail::int_in;
+  return detail::spec_of("openings", rc::gen::map(rc::gen::tuple(int_in(1, 2), int_in(1, 2), int_in(0, 10), int_in(0, 10), int_in(0, 2)),
+                                                  [](const std::tuple<int, int, int, int, int>& t) {
+                                                    const auto [bx, by, facades, arcades, bridges] = t;
+                                                    return nlohmann::json{{"blocks_x", bx},
+                                                                          {"blocks_y", by},
+                                                                          {"facade_weight", 0.1 + facades / 10.0},
+                                                                          {"arcade_weight", 0.1 + arcades / 10.0},
+                                                                          {"plain_weight", 0.2},
+                                                                          {"bridge_count", bridges}};
+                                                  }));
+}
+
+// The fuzzer's scenes: the properties' small cities and mesh scenes with openings.
 inline rc::Gen<SceneSpec> fuzz_scene_spec() {
   return rc::gen::weightedOneOf<SceneSpec>(
-      {{3, manhattan_spec()}, {2, scatter_spec()}, {2, irregular_spec()}, {1, plaza_spec()}, {1, thesis_spec()}});
+      {{3, manhattan_spec()}, {2, scatter_spec()}, {2, irregular_spec()}, {1, plaza_spec()}, {1, thesis_spec()}, {3, openings_spec()}});
 }
 
 namespace detail {

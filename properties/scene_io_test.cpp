@@ -111,20 +111,5 @@ TEST(SceneIo, CameraValidationNamesTheField) {
   EXPECT_EQ(field_of(R"({"position":[0,0,1],"hfov":6.283185307179586})"), "(accepted)");
 }
 
-TEST(SceneIo, ObjExportHasEveryTriangle) {
-  const Scene scene = scene_from_json_text(scene_text(kBox));
-  std::ostringstream obj;
-  write_obj(scene, obj);
-  const std::string text = obj.str();
-  std::size_t faces = 0, vertices = 0;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    faces += line.rfind("f ", 0) == 0;
-    vertices += line.rfind("v ", 0) == 0;
-  }
-  EXPECT_EQ(vertices, 8u);
-  EXPECT_EQ(faces, 8u + 1u);  // two per wall, one roof polygon
-}
-
 }  // namespace
 }  // namespace cullcheck

@@ -41,13 +41,16 @@ json parse_object(const std::string& line, const std::string& subject, std::int6
 
 json hello(const Scene& scene, const SceneFiles& files, std::size_t frames) {
   json objects = json::array();
-  for (const Building& b : scene.buildings)
-    objects.push_back({{"id", b.id}, {"name", "building_" + std::to_string(b.id)}, {"kind", "building"}, {"bounds", box_json(b.bounds)}});
-  for (const MeshObject& m : scene.meshes)
-    objects.push_back({{"id", m.id},
-                       {"name", m.name.empty() ? "mesh_" + std::to_string(m.id) : m.name},
-                       {"kind", "mesh"},
-                       {"bounds", box_json(m.bounds)}});
+  // "node" is the object's node in the .glb (core/formats: building_<id> / mesh_<id>), "name" the
+  // name it came with (an imported mesh's), else the node's.
+  for (const Building& b : scene.buildings) {
+    const std::string node = "building_" + std::to_string(b.id);
+    objects.push_back({{"id", b.id}, {"node", node}, {"name", node}, {"kind", "building"}, {"bounds", box_json(b.bounds)}});
+  }
+  for (const MeshObject& m : scene.meshes) {
+    const std::string node = "mesh_" + std::to_string(m.id);
+    objects.push_back({{"id", m.id}, {"node", node}, {"name", m.name.empty() ? node : m.name}, {"kind", "mesh"}, {"bounds", box_json(m.bounds)}});
+  }
   return {{"type", "hello"},
           {"protocol", kVersion},
           {"frames", frames},
@@ -58,6 +61,10 @@ json hello(const Scene& scene, const SceneFiles& files, std::size_t frames) {
            {{"glb", files.glb.empty() ? json(nullptr) : json(files.glb)},
             {"json", files.json},
             {"coordinates", "scene-local metres, z up; world = local + origin"},
+            // The .glb's nodes sit under one root node that turns z up into glTF's +Y up: an engine
+            // that keeps glTF's frame multiplies the view matrix by its inverse on the right.
+            {"glb_root_node", "cullcheck_scene"},
+            {"glb_root_matrix", {{1, 0, 0, 0}, {0, 0, 1, 0}, {0, -1, 0, 0}, {0, 0, 0, 1}}},
             {"origin", {scene.origin.x, scene.origin.y}},
             {"object_count", scene.object_count()},
             {"objects", std::move(objects)}}}};

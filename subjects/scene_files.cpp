@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "core/errors.hpp"
+#include "core/formats/mesh_formats.hpp"
 #include "core/scene_io.hpp"
 
 namespace cullcheck {
@@ -35,7 +36,9 @@ WorkDir::~WorkDir() {
 protocol::SceneFiles write_scene_files(const Scene& scene, const std::string& dir, const std::string& prefix) {
   protocol::SceneFiles files;
   files.json = std::filesystem::absolute(dir + "/" + prefix + ".json").string();
+  files.glb = std::filesystem::absolute(dir + "/" + prefix + ".glb").string();
   write_scene_file(scene, files.json);
+  formats::write_glb(scene, files.glb);
   return files;
 }
 

@@ -1,6 +1,7 @@
 #include "apps/cullcheck/flags.hpp"
 
 #include <algorithm>
+#include <map>
 #include <thread>
 
 #include "core/errors.hpp"
@@ -15,12 +16,19 @@ namespace cullcheck::cli {
 
 void SceneFlags::add(CLI::App& app) {
   app.add_option("--generator", source.generator,
-                 "City generator (manhattan, plaza, default, scatter, irregular, thesis, kept)")
+                 "City generator (manhattan, plaza, default, scatter, irregular, thesis, openings, kept)")
       ->capture_default_str();
   app.add_option("--seed", source.seed, "Generator seed")->capture_default_str();
   app.add_option("--params", source.parameters_json, "Generator parameters as JSON, overlaid on its defaults")
       ->capture_default_str();
-  app.add_option("--scene", source.file, "Read the scene from this JSON file instead of generating it");
+  app.add_option("--scene", source.file,
+                 "Read the scene from this file instead of generating it: cullcheck scene JSON, glTF 2.0 (.glb, .gltf) or OBJ");
+  const std::map<std::string, formats::IdSource> id_sources{{"node", formats::IdSource::node}, {"mesh", formats::IdSource::mesh}};
+  app.add_option("--mesh-ids", source.mesh_ids, "glTF scenes: one object per node (node, the default) or per glTF mesh (mesh)")
+      ->transform(CLI::CheckedTransformer(id_sources, CLI::ignore_case));
+  const std::map<std::string, formats::UpAxis> axes{{"y", formats::UpAxis::y}, {"z", formats::UpAxis::z}};
+  app.add_option("--obj-up", source.obj_up, "OBJ scenes: the file's up axis, y or z (default z)")
+      ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case));
 }
 
 void PathFlags::add(CLI::App& app, int default_frames) {
