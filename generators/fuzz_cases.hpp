@@ -51,15 +51,17 @@ inline void showValue(const FuzzCase& c, std::ostream& os) { os << c; }
 
 namespace rcgen {
 
-// Mesh scenes with openings (generators/openings_city.cpp): 1-2 x 1-2 blocks, facades with doors
-// and windows, arcades and bridges by weight (each may shrink to none).
+// Mesh scenes with openings (generators/openings_city.cpp): 1-2 x 1-2 blocks of 1-4 core lots,
+// facades with doors and windows, arcades and bridges by weight (each may shrink to none).
 inline rc::Gen<SceneSpec> openings_spec() {
   using detail::int_in;
-  return detail::spec_of("openings", rc::gen::map(rc::gen::tuple(int_in(1, 2), int_in(1, 2), int_in(0, 10), int_in(0, 10), int_in(0, 2)),
-                                                  [](const std::tuple<int, int, int, int, int>& t) {
-                                                    const auto [bx, by, facades, arcades, bridges] = t;
+  return detail::spec_of("openings", rc::gen::map(rc::gen::tuple(int_in(1, 2), int_in(1, 2), int_in(0, 10), int_in(0, 10), int_in(0, 2),
+                                                                 int_in(1, 4)),
+                                                  [](const std::tuple<int, int, int, int, int, int>& t) {
+                                                    const auto [bx, by, facades, arcades, bridges, core] = t;
                                                     return nlohmann::json{{"blocks_x", bx},
                                                                           {"blocks_y", by},
+                                                                          {"core_buildings", core},
                                                                           {"facade_weight", 0.1 + facades / 10.0},
                                                                           {"arcade_weight", 0.1 + arcades / 10.0},
                                                                           {"plain_weight", 0.2},

@@ -131,7 +131,8 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     else ++result.cases, ++result.kinds[c.kind], ++result.scenes[c.spec.generator];
     CaseOutcome outcome = run_case(c, options, work.path());
     if (!outcome.failed) return;
-    if (!failing) result.seconds_to_failure = seconds_since(start);
+    const bool first = !failing;
+    if (first) result.seconds_to_failure = seconds_since(start);
     failing = true;
     // Shrinking accepts a smaller case only when it fails too, so the last failing case seen is
     // the minimal one RapidCheck reports.
@@ -142,7 +143,9 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
                                  std::move(outcome.verification),
                                  std::move(outcome.pvs_by_frame),
                                  scene.object_count(),
-                                 scene.triangle_count()};
+                                 scene.triangle_count(),
+                                 first ? scene.object_count() : result.failure->first_objects,
+                                 first ? c.path.frames.size() : result.failure->first_frames};
     RC_FAIL(outcome.message);
   };
   // A listener of our own: RapidCheck's default one reads RC_PARAMS and prints its own seed,
@@ -198,6 +201,8 @@ nlohmann::json fuzz_json(const FuzzResult& r) {
                     {"scene", {{"generator", f.minimal.spec.generator}, {"seed", f.minimal.spec.seed}, {"parameters", f.minimal.spec.params}}},
                     {"objects", f.objects},
                     {"triangles", f.triangles},
+                    {"first_failure_objects", f.first_objects},
+                    {"first_failure_frames", f.first_frames},
                     {"path_kind", f.minimal.kind},
                     {"frames", f.minimal.path.frames.size()}};
   }
@@ -217,7 +222,8 @@ std::string fuzz_summary(const FuzzResult& r, const std::string& dir) {
   }
   const FuzzFailure& f = *r.failure;
   out << "FAILED after " << r.cases << " cases (" << r.seconds_to_failure << " s); shrunk in " << r.shrink_runs << " more runs ("
-      << r.shrinks_accepted << " accepted) to " << f.objects << " objects, " << f.triangles << " triangles, "
+      << r.shrinks_accepted << " accepted) from " << f.first_objects << " objects and " << f.first_frames << " frames to "
+      << f.objects << " objects, " << f.triangles << " triangles, "
       << f.minimal.path.frames.size() << " frames (" << f.minimal.kind << ")\n"
       << "  " << f.message << "\n"
       << "  counterexample: " << dir << "/ (replay: sh " << dir << "/replay.sh)\n";

@@ -41,6 +41,7 @@ struct FuzzFailure {
   PathVerification verification;  // of the minimal case
   std::map<std::size_t, std::vector<ObjectId>> pvs_by_frame;  // the subject's answers in it
   std::size_t objects = 0, triangles = 0;
+  std::size_t first_objects = 0, first_frames = 0;  // the first failing case's, before shrinking
 };
 
 struct FuzzResult {

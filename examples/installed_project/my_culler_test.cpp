@@ -8,10 +8,10 @@
 
 namespace {
 
-// Two boxes in a row along +x, the far one taller than the near one so both are seen.
+// Two boxes in a row along +x; the far one (30 m) shows above the near one (5 m) from 1.7 m.
 cullcheck::Scene two_boxes() {
   cullcheck::Scene scene;
-  scene.buildings.push_back(cullcheck::box_building(1, 20, -5, 25, 5, 10));
+  scene.buildings.push_back(cullcheck::box_building(1, 20, -5, 25, 5, 5));
   scene.buildings.push_back(cullcheck::box_building(2, 40, -5, 45, 5, 30));
   return scene;
 }
