@@ -33,11 +33,12 @@ WorkDir::~WorkDir() {
   std::filesystem::remove_all(path_, ec);
 }
 
-protocol::SceneFiles write_scene_files(const Scene& scene, const std::string& dir, const std::string& prefix) {
+protocol::SceneFiles write_scene_files(const Scene& scene, const std::string& dir, const std::string& prefix, bool glb) {
   protocol::SceneFiles files;
   files.json = std::filesystem::absolute(dir + "/" + prefix + ".json").string();
-  files.glb = std::filesystem::absolute(dir + "/" + prefix + ".glb").string();
   write_scene_file(scene, files.json);
+  if (!glb) return files;
+  files.glb = std::filesystem::absolute(dir + "/" + prefix + ".glb").string();
   formats::write_glb(scene, files.glb);
   return files;
 }

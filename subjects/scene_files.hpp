@@ -28,8 +28,9 @@ class WorkDir {
   bool remove_ = false;
 };
 
-// Writes scene.json and scene.glb into `dir` (absolute paths returned); `prefix` names the files
-// (e.g. "scene" -> scene.json, scene.glb).
-protocol::SceneFiles write_scene_files(const Scene& scene, const std::string& dir, const std::string& prefix = "scene");
+// Writes scene.json and (unless `glb` is false) scene.glb into `dir` (absolute paths returned);
+// `prefix` names the files (e.g. "scene" -> scene.json, scene.glb).
+protocol::SceneFiles write_scene_files(const Scene& scene, const std::string& dir, const std::string& prefix = "scene",
+                                       bool glb = true);
 
 }  // namespace cullcheck

@@ -21,7 +21,7 @@ struct SubjectFlags {
   std::string visible, claims = "conservative", work_dir;
   std::int64_t pixel_budget = -1;
   double frame_timeout = 10.0, hello_timeout = 60.0;
-  bool keep_work_dir = false;
+  bool keep_work_dir = false, no_glb = false;
 
   // `inline_visible`: also --visible/--claims/--pixel-budget (gate only).
   void add(CLI::App& app, bool inline_visible);

@@ -1,30 +1,27 @@
-// The smallest useful subject (README "The subject protocol"): culls each object's bounding box
-// against the view volume in clip space (all 8 corners outside one plane), so it is conservative.
-#include <nlohmann/json.hpp>
+// The README's minimal subject: keeps every object whose bounding box is not wholly beyond one
+// clip plane of projection * view (conservative). Build: g++ -std=c++20 minimal_subject.cpp
+#include <algorithm>
 #include <iostream>
-using nlohmann::json;
+#include <nlohmann/json.hpp>
 int main() {
+  using nlohmann::json;
   std::string line;
   std::getline(std::cin, line);
   const json objects = json::parse(line)["scene"]["objects"];
   std::cout << R"({"type":"ready","name":"minimal-box","claims":"conservative","projections":["perspective","orthographic"]})" << std::endl;
-  while (std::getline(std::cin, line)) {
-    const json frame = json::parse(line);
-    if (frame["type"] != "frame") break;
-    const json &v = frame["view"], &p = frame["projection"];
-    json m = json::array(), ids = json::array();  // m = projection * view
-    for (int r = 0; r < 4; ++r) for (int c = 0; c < 4; ++c) { double s = 0; for (int k = 0; k < 4; ++k) s += double(p[r][k]) * double(v[k][c]); m[r][c] = s; }
+  for (json f; std::getline(std::cin, line) && (f = json::parse(line))["type"] == "frame";) {
+    double m[4][4] = {};  // m = projection * view
+    for (int r = 0; r < 16; ++r) for (int k = 0; k < 4; ++k) m[r / 4][r % 4] += f["projection"][r / 4][k].get<double>() * f["view"][k][r % 4].get<double>();
+    json ids = json::array();
     for (const json& o : objects) {
-      int outside[6] = {0, 0, 0, 0, 0, 0};  // per clip plane: corners beyond it
+      int beyond[6] = {};  // corners beyond each clip plane: -w <= x, y, z <= w
       for (int i = 0; i < 8; ++i) {
-        double q[3] = {o["bounds"][i & 1][0], o["bounds"][(i >> 1) & 1][1], o["bounds"][(i >> 2) & 1][2]}, x[4];
-        for (int r = 0; r < 4; ++r) x[r] = double(m[r][0]) * q[0] + double(m[r][1]) * q[1] + double(m[r][2]) * q[2] + double(m[r][3]);
-        for (int a = 0; a < 3; ++a) outside[2 * a] += x[a] < -x[3], outside[2 * a + 1] += x[a] > x[3];
+        double p[4] = {o["bounds"][i & 1][0], o["bounds"][i >> 1 & 1][1], o["bounds"][i >> 2][2], 1.0}, c[4] = {};
+        for (int r = 0; r < 16; ++r) c[r / 4] += m[r / 4][r % 4] * p[r % 4];
+        for (int a = 0; a < 3; ++a) beyond[2 * a] += c[a] < -c[3], beyond[2 * a + 1] += c[a] > c[3];
       }
-      bool culled = false;
-      for (int k : outside) culled = culled || k == 8;
-      if (!culled) ids.push_back(o["id"]);
+      if (std::count(beyond, beyond + 6, 8) == 0) ids.push_back(o["id"]);
     }
-    std::cout << json{{"type", "visible"}, {"frame", frame["frame"]}, {"ids", ids}}.dump() << std::endl;
+    std::cout << json{{"type", "visible"}, {"frame", f["frame"]}, {"ids", ids}}.dump() << std::endl;
   }
 }
