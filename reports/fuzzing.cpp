@@ -271,7 +271,11 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
                                                      "\nhere=$(cd \"$(dirname \"$0\")\" && pwd)\n" + replay + "\n");
   fs::permissions(dir + "/replay.sh", fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add, ec);
   nlohmann::json doc = fuzz_json(result);
-  doc["replay"] = replay;
+  // The ledger's replay names the folder itself (replay.sh finds its files wherever it is moved).
+  const std::string here = fs::absolute(dir).string();
+  const std::string replay_here = "cullcheck gate --scene " + shell_quote(here + "/scene.json") + " --path " +
+                                  shell_quote(here + "/path.json") + " --subject " + shell_quote(options.subject);
+  doc["replay"] = replay_here;
   doc["generator_replay"] = "cullcheck gate " + generators::replay_args(f.minimal.spec) + " --path path.json --subject " +
                             shell_quote(options.subject);
   // The pictures of the first failing frame (none when the subject failed before answering one).
@@ -290,7 +294,7 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
                        {"misdrawn_pixels", pictures.misdrawn_pixels}};
   }
   write_text_file_atomically(dir + "/case.json", doc.dump(2) + "\n");
-  return replay;
+  return replay_here;
 }
 
 }  // namespace cullcheck
