@@ -293,7 +293,7 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
     doc["pictures"] = {{"frame", *frame}, {"map", "map.png"}, {"image", "frame.png"}, {"missed", pictures.missed},
                        {"misdrawn_pixels", pictures.misdrawn_pixels}};
   }
-  write_text_file_atomically(dir + "/case.json", doc.dump(2) + "\n");
+  write_text_file_atomically(dir + "/case.json", doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   return replay_here;
 }
 

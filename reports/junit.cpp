@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "core/utf8.hpp"
+
 namespace cullcheck {
 namespace {
 
@@ -13,7 +15,8 @@ std::string seconds_text(double s) {
 
 }  // namespace
 
-std::string xml_escape(const std::string& text) {
+std::string xml_escape(const std::string& raw) {
+  const std::string text = valid_utf8(raw);  // the document says UTF-8; a subject's bytes may not be
   std::string out;
   out.reserve(text.size());
   for (char c : text) {

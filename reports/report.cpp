@@ -253,6 +253,10 @@ std::string summary_table(const PathVerification& v) {
                   r.claims_conservative ? "" : " (not claimed conservative)");
     out += line;
   }
+  // What did not run, and why: methods the scene rules out, frames a method does not take.
+  for (const auto& [method, why] : v.skipped_methods) out += "skipped " + method + ": " + why + "\n";
+  for (const MethodRun& r : v.runs)
+    if (r.frames_skipped > 0) out += r.method + ": " + std::to_string(r.frames_skipped) + " frames skipped: " + r.skip_reason + "\n";
   // Incremental methods: how often their PVS matched the reference's, and how often the guard fired.
   for (const MethodRun& r : v.runs) {
     if (!r.compared_with_reference || r.method == "oh_os_conservative" || r.method.rfind("delta_h", 0) != 0) continue;

@@ -110,6 +110,7 @@ ChildProcess::Io ChildProcess::read_line(std::string& line, double timeout_secon
   std::size_t scanned = 0;
   for (;;) {
     if (const std::size_t nl = buffer_.find('\n', scanned); nl != std::string::npos) {
+      if (nl > max_bytes) return Io::too_long;
       line.assign(buffer_, 0, nl);
       buffer_.erase(0, nl + 1);
       return Io::ok;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/camera_matrices.hpp"
+#include "core/utf8.hpp"
 #include "core/scene_io.hpp"
 #include "subjects/subject_error.hpp"
 
@@ -20,12 +21,10 @@ json matrix_json(const Matrix4& m) {
 
 json box_json(const Box3& b) { return {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}; }
 
-// A shortened copy of a line for error messages (subjects can print megabytes of garbage).
+// A shortened copy of a line for error messages (subjects can print megabytes of garbage, and
+// bytes that are not UTF-8, which JSON reports cannot hold).
 std::string excerpt(const std::string& line) {
-  std::string e = line.size() > 120 ? line.substr(0, 120) + "..." : line;
-  for (char& c : e)
-    if (static_cast<unsigned char>(c) < 0x20) c = '?';
-  return "'" + e + "'";
+  return "'" + valid_utf8(line.size() > 120 ? line.substr(0, 120) + "..." : line) + "'";
 }
 
 json parse_object(const std::string& line, const std::string& subject, std::int64_t frame, const char* expected) {

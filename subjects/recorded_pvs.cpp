@@ -8,7 +8,8 @@
 namespace cullcheck {
 
 RecordedPvsMethod::RecordedPvsMethod(const Scene& scene, const std::string& path, const protocol::Claim& claim, std::string name)
-    : path_(path), name_(name.empty() ? program_name(path) : std::move(name)), claim_(claim) {
+    : path_(path), name_(name.empty() ? program_name(path) : name), claim_(claim) {
+  const bool named = !name.empty();  // a given name beats the file's ready line
   const std::string label = "recorded PVS file " + path;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SubjectError(SubjectError::Kind::failed_to_start, label, SubjectError::kHandshake, "cannot be opened for reading");
@@ -23,7 +24,7 @@ RecordedPvsMethod::RecordedPvsMethod(const Scene& scene, const std::string& path
     if (message.value("type", nlohmann::json()) == "ready") {
       if (number != 1 && !frames_.empty())
         throw SubjectError(SubjectError::Kind::protocol, where, SubjectError::kHandshake, "a ready line must come first");
-      if (auto n = message.find("name"); n != message.end() && n->is_string() && name.empty()) name_ = *n;
+      if (auto n = message.find("name"); n != message.end() && n->is_string() && !named) name_ = *n;
       if (message.contains("claims")) claim_ = protocol::parse_claim(message, where, SubjectError::kHandshake);
       continue;
     }

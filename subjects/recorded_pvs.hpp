@@ -21,8 +21,8 @@ namespace cullcheck {
 
 class RecordedPvsMethod final : public CullingMethod {
  public:
-  // `claim` is used when the file has no ready line (the command line's --claims); a ready line
-  // overrides the name and, if `claim_from_file` allows, the claim.
+  // `claim` is used when the file has no ready line (the command line's --claims); a ready line's
+  // claim overrides it, and its name is used unless `name` is given.
   RecordedPvsMethod(const Scene& scene, const std::string& path, const protocol::Claim& claim, std::string name = "");
   // Visible sets given directly (`gate --visible IDS` for one camera): ids checked against the scene.
   RecordedPvsMethod(const Scene& scene, std::map<std::size_t, std::vector<ObjectId>> frames, const protocol::Claim& claim,

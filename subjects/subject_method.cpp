@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+
+#include "core/utf8.hpp"
 #include <iterator>
 
 namespace cullcheck {
@@ -75,7 +77,7 @@ void SubjectMethod::fail(Kind kind, std::int64_t frame, const std::string& probl
   } else {
     process_->kill_group();  // a subject that lies is not asked again
   }
-  std::string tail = process_->stderr_tail(600);
+  std::string tail = valid_utf8(process_->stderr_tail(600));
   if (!tail.empty()) {
     while (!tail.empty() && (tail.back() == '\n' || tail.back() == '\r')) tail.pop_back();
     text += "; its stderr ends: " + tail;

@@ -48,7 +48,7 @@ Runner add_fuzz(CLI::App& app) {
       code = kExitGateFailed;
     }
     std::cout << fuzz_summary(r, f->out);
-    if (!f->output.empty()) write_text_file_atomically(f->output, doc.dump(2) + "\n");
+    if (!f->output.empty()) write_text_file_atomically(f->output, doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     return code;
   };
 }

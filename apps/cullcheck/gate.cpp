@@ -104,12 +104,10 @@ Runner add_gate(CLI::App& app) {
     if (f->max_overestimation > 0.0) in.thresholds.max_overestimation = f->max_overestimation;
     nlohmann::json document = build_report(in);
     const GateVerdict verdict = gate_verdict(v, scene_flags, in.thresholds);
-    write_text_file_atomically(f->output, document.dump(2) + "\n");
+    write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
     std::cout << summary_table(v);
-    for (const auto& [name, why] : v.skipped_methods) std::cout << "skipped " << name << ": " << why << "\n";
     for (const MethodRun& r : v.runs) {
-      if (r.frames_skipped > 0) std::cout << r.method << ": " << r.frames_skipped << " frames skipped: " << r.skip_reason << "\n";
       for (const Violation& x : r.violations)
         std::cout << "violation: " << r.method << " culled object " << x.building << " at frame " << x.frame << " (oracle "
                   << x.model << (x.witness.empty() ? "" : ", witness " + x.witness) << ")\n  replay: " << x.replay << "\n";
@@ -117,6 +115,7 @@ Runner add_gate(CLI::App& app) {
         std::cout << "over budget: " << r.method << " at frame " << x.frame << ": " << x.witness << "\n  replay: " << x.replay << "\n";
     }
     std::cout << "gate: " << (verdict.passed() ? "passed" : "FAILED") << "; wrote " << f->output << "\n";
+    // Report JSON replaces bytes that are not UTF-8 (a subject's garbage) rather than fail on them.
     if (v.aborted) std::cerr << "cullcheck: " << v.aborted->message << "\n";
     return verdict.exit_code();
   };

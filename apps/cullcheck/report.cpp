@@ -221,7 +221,7 @@ Runner add_report(CLI::App& app) {
     document["gate"] = verdict.to_json();
     if (!f->benchmark_json.empty())
       document["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
-    write_text_file_atomically(f->output, document.dump(2) + "\n");
+    write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
     std::cout << summary_table(v);
     for (const ClaimCheck& c : in.claims) {
