@@ -1,0 +1,87 @@
+// JUnit XML from gate verdicts (reports/junit.hpp): the whole document for a small case, the
+// counts, and xml_escape.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "reports/junit.hpp"
+
+namespace cullcheck {
+namespace {
+
+using Outcome = GateCheck::Outcome;
+
+TEST(JUnit, WholeDocumentForTwoSuites) {
+  GateVerdict first;
+  first.scene = R"(--seed 1 --city "grid")";
+  first.checks = {
+      {"oh_os", "conservative", Outcome::passed, "", {}, 0.25},
+      {"wang", "pixel_budget", Outcome::failed, "2 frames above the budget of 40 misdrawn pixels (worst 95) & <more>",
+       {"cullcheck verify --frame 3"}, 1.5},
+  };
+  GateVerdict second;
+  second.scene = "s2";
+  second.checks = {
+      {"subject:x", "answers", Outcome::error, "subject 'x' at frame 3: crashed", {}, 0.0},
+      {"subject:x", "pixel_budget", Outcome::skipped, "the pixel oracle checked no frame", {}, 0.125},
+  };
+  // Suite times are the sums of their cases' (0.25 + 1.5 = 1.75; 0 + 0.125), printed with 6
+  // decimals; a passed case is an empty element; a failure's body is its message and a
+  // "replay: " line per replay; a skipped case has no body; markup in any text is escaped.
+  const std::string expected =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<testsuites name=\"cullcheck\" tests=\"4\" failures=\"1\" errors=\"1\" skipped=\"1\">\n"
+      "  <testsuite name=\"--seed 1 --city &quot;grid&quot;\" tests=\"2\" failures=\"1\" errors=\"0\" skipped=\"0\" "
+      "time=\"1.750000\">\n"
+      "    <testcase classname=\"oh_os\" name=\"conservative\" time=\"0.250000\"/>\n"
+      "    <testcase classname=\"wang\" name=\"pixel_budget\" time=\"1.500000\">\n"
+      "      <failure message=\"2 frames above the budget of 40 misdrawn pixels (worst 95) &amp; &lt;more&gt;\" "
+      "type=\"pixel_budget\">2 frames above the budget of 40 misdrawn pixels (worst 95) &amp; &lt;more&gt;\n"
+      "replay: cullcheck verify --frame 3</failure>\n"
+      "    </testcase>\n"
+      "  </testsuite>\n"
+      "  <testsuite name=\"s2\" tests=\"2\" failures=\"0\" errors=\"1\" skipped=\"1\" time=\"0.125000\">\n"
+      "    <testcase classname=\"subject:x\" name=\"answers\" time=\"0.000000\">\n"
+      "      <error message=\"subject &apos;x&apos; at frame 3: crashed\" type=\"answers\">subject &apos;x&apos; at frame 3: "
+      "crashed</error>\n"
+      "    </testcase>\n"
+      "    <testcase classname=\"subject:x\" name=\"pixel_budget\" time=\"0.125000\">\n"
+      "      <skipped message=\"the pixel oracle checked no frame\"/>\n"
+      "    </testcase>\n"
+      "  </testsuite>\n"
+      "</testsuites>\n";
+  EXPECT_EQ(junit_xml({first, second}), expected);
+}
+
+TEST(JUnit, NoSuites) {
+  EXPECT_EQ(junit_xml({}),
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            "<testsuites name=\"cullcheck\" tests=\"0\" failures=\"0\" errors=\"0\" skipped=\"0\">\n"
+            "</testsuites>\n");
+}
+
+TEST(JUnit, EveryReplayIsALine) {
+  GateVerdict v;
+  v.scene = "s";
+  v.checks = {{"m", "conservative", Outcome::failed, "culled", {"r1", "r2", "r3"}, 0.0}};
+  const std::string xml = junit_xml({v});
+  EXPECT_NE(xml.find(">culled\nreplay: r1\nreplay: r2\nreplay: r3</failure>"), std::string::npos) << xml;
+  // The message attribute carries the message alone.
+  EXPECT_NE(xml.find("<failure message=\"culled\" type=\"conservative\">"), std::string::npos) << xml;
+}
+
+TEST(XmlEscape, MarkupAndControlCharacters) {
+  EXPECT_EQ(xml_escape("a&b<c>d\"e'f"), "a&amp;b&lt;c&gt;d&quot;e&apos;f");
+  // Control characters XML 1.0 forbids become '?'; tab, newline and carriage return stay.
+  EXPECT_EQ(xml_escape(std::string("\x01x\x1f") + '\0' + "\x1b[0m"), "?x???[0m");
+  EXPECT_EQ(xml_escape("\t\n\r"), "\t\n\r");
+  // Bytes of UTF-8 text (here "é", 0xC3 0xA9) pass through.
+  EXPECT_EQ(xml_escape("caf\xc3\xa9"), "caf\xc3\xa9");
+  EXPECT_EQ(xml_escape(""), "");
+  // Text that looks escaped is escaped again: the input is text, not markup.
+  EXPECT_EQ(xml_escape("&amp;"), "&amp;amp;");
+}
+
+}  // namespace
+}  // namespace cullcheck
