@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "reports/gate_verdict.hpp"
+#include "subjects/protocol.hpp"
+#include "subjects/subject_error.hpp"
 
 namespace cullcheck {
 namespace {
@@ -267,6 +269,31 @@ TEST(GateVerdict, RunWithNoCheckedFrameIsSkipped) {
   EXPECT_EQ(only_check(g).message, "no frame was checked by the oracle");
   EXPECT_TRUE(g.passed());  // skipped is not a failure
   EXPECT_EQ(g.exit_code(), 0);
+}
+
+// BUG (root cause in subjects/protocol.cpp's excerpt(), see ParseVisible.DISABLED_GarbageExcerptIsValidUtf8):
+// a subject whose garbage line holds bytes that are not UTF-8 aborts the run with that text in
+// Abort::message; the verdict's JSON then cannot be written (nlohmann::json's dump() throws
+// type_error 316), so the gate cannot write report.json and exits as an internal error, not 2.
+// Seen end to end: a subject that answers a frame with the bytes FF FE makes `cullcheck gate
+// --subject ... -o r.json --junit r.xml` print "internal error: [json.exception.type_error.316]
+// invalid UTF-8 byte ..." and exit 3, writing neither file.
+TEST(GateVerdict, DISABLED_SubjectGarbageThatIsNotUtf8StillGivesAWritableVerdict) {
+  std::string message;
+  try {
+    (void)protocol::parse_visible(std::string("\xff\xfe not JSON"), "subject 'x'", 0, {1});
+  } catch (const SubjectError& e) {
+    message = e.what();
+  }
+  ASSERT_FALSE(message.empty());
+  PathVerification v;
+  MethodRun r = conservative_run("subject:x");
+  r.outside = true;
+  v.runs.push_back(r);
+  v.aborted = Abort{"subject:x", 0, "garbage", message};
+  const GateVerdict g = gate_verdict(v, "");
+  EXPECT_EQ(g.exit_code(), 2);
+  EXPECT_NO_THROW((void)g.to_json().dump());
 }
 
 TEST(GateVerdict, ToJson) {

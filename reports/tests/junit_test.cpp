@@ -83,5 +83,34 @@ TEST(XmlEscape, MarkupAndControlCharacters) {
   EXPECT_EQ(xml_escape("&amp;"), "&amp;amp;");
 }
 
+// Whether `s` is well-formed UTF-8 (lead and continuation bytes; overlong forms not checked).
+bool valid_utf8(const std::string& s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (extra < 0 || s.size() - i <= static_cast<std::size_t>(extra)) return false;
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return false;
+    i += 1 + extra;
+  }
+  return true;
+}
+
+TEST(XmlEscape, Utf8CheckerOfThisTest) {
+  EXPECT_TRUE(valid_utf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"));
+  EXPECT_FALSE(valid_utf8("a\xff"));
+  EXPECT_FALSE(valid_utf8("\xc3"));
+  EXPECT_FALSE(valid_utf8("\xe2\x28\xa1"));
+}
+
+// BUG (same root cause as GateVerdict.DISABLED_SubjectGarbageThatIsNotUtf8StillGivesAWritableVerdict):
+// the document declares encoding="UTF-8", but xml_escape passes bytes that are not UTF-8 through,
+// so a subject's binary garbage quoted into a check's message makes the JUnit file not
+// well-formed XML (CI systems reject the whole file). The header promises text "made safe for
+// XML"; it masks forbidden control characters but not malformed bytes.
+TEST(XmlEscape, DISABLED_BytesThatAreNotUtf8AreNotPassedThrough) {
+  EXPECT_TRUE(valid_utf8(xml_escape("garbage \xff\xfe from a subject")));
+}
+
 }  // namespace
 }  // namespace cullcheck
