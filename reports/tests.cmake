@@ -3,3 +3,8 @@
 add_executable(pictures_test ${CMAKE_CURRENT_LIST_DIR}/tests/pictures_test.cpp)
 target_link_libraries(pictures_test PRIVATE cullcheck_pictures GTest::gtest_main cullcheck_warnings)
 add_test(NAME pictures_test COMMAND pictures_test)
+
+# The gate's verdict and its JUnit XML, from verifications built by hand.
+add_executable(gate_verdict_test ${CMAKE_CURRENT_LIST_DIR}/tests/gate_verdict_test.cpp ${CMAKE_CURRENT_LIST_DIR}/tests/junit_test.cpp)
+target_link_libraries(gate_verdict_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME gate_verdict_test COMMAND gate_verdict_test)
