@@ -1,6 +1,7 @@
 // Text from outside programs (a subject's garbage, its stderr) is bytes, not UTF-8; JSON and XML
-// output must be UTF-8. valid_utf8 keeps every well-formed UTF-8 sequence and replaces each byte
-// that is not part of one (and each control character but tab and newline) by `replacement`.
+// output must be UTF-8. valid_utf8 keeps every well-formed UTF-8 sequence (ASCII, control
+// characters included, is kept as it is) and replaces each byte that is not part of one by
+// `replacement`.
 #pragma once
 
 #include <string>
@@ -32,8 +33,7 @@ inline std::string valid_utf8(std::string_view text, char replacement = '?') {
       ++i;
       continue;
     }
-    if (n == 1 && c < 0x20 && c != '\t' && c != '\n') out += replacement;
-    else out.append(text.substr(i, n));
+    out.append(text.substr(i, n));
     i += n;
   }
   return out;

@@ -24,7 +24,10 @@ json box_json(const Box3& b) { return {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y
 // A shortened copy of a line for error messages (subjects can print megabytes of garbage, and
 // bytes that are not UTF-8, which JSON reports cannot hold).
 std::string excerpt(const std::string& line) {
-  return "'" + valid_utf8(line.size() > 120 ? line.substr(0, 120) + "..." : line) + "'";
+  std::string e = valid_utf8(line.size() > 120 ? line.substr(0, 120) + "..." : line);
+  for (char& c : e)
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  return "'" + e + "'";
 }
 
 json parse_object(const std::string& line, const std::string& subject, std::int64_t frame, const char* expected) {

@@ -271,14 +271,14 @@ TEST(GateVerdict, RunWithNoCheckedFrameIsSkipped) {
   EXPECT_EQ(g.exit_code(), 0);
 }
 
-// BUG (root cause in subjects/protocol.cpp's excerpt(), see ParseVisible.DISABLED_GarbageExcerptIsValidUtf8):
+// Regression test of a bug it found, since fixed (root cause in subjects/protocol.cpp's excerpt(), see ParseVisible.GarbageExcerptIsValidUtf8):
 // a subject whose garbage line holds bytes that are not UTF-8 aborts the run with that text in
 // Abort::message; the verdict's JSON then cannot be written (nlohmann::json's dump() throws
 // type_error 316), so the gate cannot write report.json and exits as an internal error, not 2.
 // Seen end to end: a subject that answers a frame with the bytes FF FE makes `cullcheck gate
 // --subject ... -o r.json --junit r.xml` print "internal error: [json.exception.type_error.316]
 // invalid UTF-8 byte ..." and exit 3, writing neither file.
-TEST(GateVerdict, DISABLED_SubjectGarbageThatIsNotUtf8StillGivesAWritableVerdict) {
+TEST(GateVerdict, SubjectGarbageThatIsNotUtf8StillGivesAWritableVerdict) {
   std::string message;
   try {
     (void)protocol::parse_visible(std::string("\xff\xfe not JSON"), "subject 'x'", 0, {1});

@@ -123,12 +123,12 @@ TEST(ChildProcess, ShortLinesWithinMaxBytesAreRead) {
   EXPECT_EQ(line, "0123456789");
 }
 
-// BUG (subjects/child_process.cpp, ChildProcess::read_line): the header promises `too_long` "when
+// Regression test of a bug it found, since fixed (subjects/child_process.cpp, ChildProcess::read_line): the header promises `too_long` "when
 // no newline came within `max_bytes`", and SubjectMethod reports too_long as "sent a line longer
 // than max_line_bytes bytes"; but read_line looks for a newline in its buffer before it checks the
 // buffer's size, so a line longer than max_bytes whose newline arrives in the same read(2) chunk
 // (up to 64 KiB) is returned as Io::ok. Here a 100-byte line with max_bytes = 10 is returned whole.
-TEST(ChildProcess, DISABLED_LineWithNewlineBeyondMaxBytesIsTooLong) {
+TEST(ChildProcess, LineWithNewlineBeyondMaxBytesIsTooLong) {
   ChildProcess p(sh("printf '%0100d\\n' 0"));
   std::string line;
   EXPECT_EQ(p.read_line(line, 5, 10), Io::too_long) << "returned a line of " << line.size() << " bytes";

@@ -178,13 +178,13 @@ TEST(ParseVisible, ErrorsNameTheKindAndTheFrame) {
   }
 }
 
-// BUG (subjects/protocol.cpp, excerpt()): a garbage line is quoted into the error with only bytes
+// Regression test of a bug it found, since fixed (subjects/protocol.cpp, excerpt()): a garbage line is quoted into the error with only bytes
 // below 0x20 masked, so bytes that are not UTF-8 (a subject printing binary, here 0xFF 0xFE) reach
 // SubjectError::what(), and from there Abort::message and the gate's check message. JSON text must
 // be UTF-8: nlohmann::json's dump() throws type_error 316 on it, so `cullcheck gate` cannot write
 // report.json for such a subject and ends with an internal error instead of exit code 2 (see
-// GateVerdict.DISABLED_SubjectGarbageThatIsNotUtf8StillGivesAWritableVerdict).
-TEST(ParseVisible, DISABLED_GarbageExcerptIsValidUtf8) {
+// GateVerdict.SubjectGarbageThatIsNotUtf8StillGivesAWritableVerdict).
+TEST(ParseVisible, GarbageExcerptIsValidUtf8) {
   const SubjectError e = visible_error(std::string("\xff\xfe not JSON"));
   EXPECT_EQ(e.kind(), Kind::garbage);
   EXPECT_NO_THROW((void)json(std::string(e.what())).dump()) << "what() holds bytes that are not UTF-8";

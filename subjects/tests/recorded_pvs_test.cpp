@@ -104,14 +104,14 @@ TEST_F(RecordedPvs, ReadyLineClaimBeatsTheGivenClaim) {
   EXPECT_EQ(m.name(), "recorded:recorded_claim.jsonl");  // the ready line has no name
 }
 
-// BUG (subjects/recorded_pvs.cpp, the file constructor): it takes a ready line's "name" only
+// Regression test of a bug it found, since fixed (subjects/recorded_pvs.cpp, the file constructor): it takes a ready line's "name" only
 // `if (... && name.empty())`, meaning a name given to the constructor wins (as SubjectOptions::name
 // beats a subject's ready name); but the member initializer has already done
 // `name_(... std::move(name))`, so `name` is a moved-from (in practice empty) string by then and
 // the ready line's name always replaces the given one. Here "mine" becomes "baker". (The CLI passes
 // no name today, so it does not show there yet. The header's mention of `claim_from_file` names a
 // parameter that does not exist.)
-TEST_F(RecordedPvs, DISABLED_GivenNameBeatsTheReadyLinesName) {
+TEST_F(RecordedPvs, GivenNameBeatsTheReadyLinesName) {
   const std::string path = write("recorded_named.jsonl", R"({"type":"ready","name":"baker","claims":"conservative"})"
                                                          "\n{\"frame\":0,\"ids\":[1]}\n");
   RecordedPvsMethod m(scene_, path, conservative_, "mine");
