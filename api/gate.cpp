@@ -3,24 +3,13 @@
 #include <algorithm>
 #include <iterator>
 
+#include "core/replay_text.hpp"
 #include "core/scene_io.hpp"
 #include "core/formats/mesh_formats.hpp"
 #include "oracle/oracle.hpp"
 
 namespace cullcheck {
 namespace {
-
-std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string camera_arg(const Camera& c) {
-  std::string t = camera_to_json_text(c);
-  if (!t.empty() && t.back() == '\n') t.pop_back();
-  return quoted(t);
-}
 
 std::string ids_text(const std::vector<ObjectId>& ids) {
   std::string out = "[";
@@ -60,7 +49,7 @@ struct Gate::Impl {
         witnesses += "\n  object " + std::to_string(id) + ": " + oracle::describe(ray);
       }
     }
-    v.replay = "cullcheck gate " + options.scene_flags + " --camera " + camera_arg(camera) + " --visible " + quoted(ids_text(visible)) +
+    v.replay = "cullcheck gate " + options.scene_flags + " --camera " + camera_arg(camera) + " --visible " + shell_quote(ids_text(visible)) +
                (budget ? " --claims approximate --pixel-budget " + std::to_string(*budget) : "");
     if (budget) {
       v.passed = v.misdrawn_pixels <= *budget;
@@ -79,7 +68,7 @@ struct Gate::Impl {
 };
 
 Gate::Gate(const std::string& scene_file, GateOptions options) {
-  if (options.scene_flags.empty()) options.scene_flags = "--scene " + quoted(scene_file);
+  if (options.scene_flags.empty()) options.scene_flags = "--scene " + shell_quote(scene_file);
   impl_ = std::make_unique<Impl>(formats::read_scene_file_any(scene_file), std::move(options));
 }
 Gate::Gate(Scene scene, GateOptions options) {

@@ -23,12 +23,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-std::string camera_arg(const Camera& c) {
-  std::string t = camera_to_json_text(c);
-  if (!t.empty() && t.back() == '\n') t.pop_back();
-  return shell_quote(t);
-}
-
 struct CaseOutcome {
   bool failed = false;
   bool subject_error = false;

@@ -172,7 +172,14 @@ nlohmann::json build_report(const ReportInputs& in) {
       json over = json::array();
       for (const Violation& x : r.over_budget)
         over.push_back({{"frame", x.frame}, {"worst_object", x.building}, {"replay", x.replay}});
+      // Per checked frame, only those with an error (a conservative method's list is empty).
+      json error_frames = json::array();
+      for (std::size_t k = 0; k < r.misdrawn_pixels.size(); ++k)
+        if (r.misdrawn_pixels[k] > 0)
+          error_frames.push_back({{"frame", r.pixel_frames[k]}, {"misdrawn_pixels", static_cast<std::uint64_t>(r.misdrawn_pixels[k])},
+                                  {"largest_blob", r.blob_per_frame[k]}});
       run["pixels"] = {{"frames_checked", r.misdrawn_pixels.size()},
+                       {"per_error_frame", std::move(error_frames)},
                        {"misdrawn_pixels", r.misdrawn_total},
                        {"misdrawn_pixels_mean", mean(r.misdrawn_pixels)},
                        {"error_frames", r.error_frames},

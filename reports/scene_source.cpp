@@ -26,19 +26,6 @@ Scene SceneSource::load() const {
   return generators::make_city(generator, seed, params);
 }
 
-std::string round_trip_text(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 std::string SceneSource::replay_flags() const {
   if (!file.empty()) {
     std::string flags = "--scene " + shell_quote(file);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/formats/mesh_formats.hpp"
+#include "core/replay_text.hpp"
 #include "core/scene.hpp"
 
 namespace cullcheck {
@@ -26,10 +27,5 @@ struct SceneSource {
   std::string replay_flags() const;
 };
 
-// Quotes a string for a POSIX shell command line.
-std::string shell_quote(const std::string& text);
-// A number as command-line text that reads back to the same double (17 significant digits):
-// replays of tiny or odd radii (1e-9 m) must not round to 0.000000.
-std::string round_trip_text(double value);
 
 }  // namespace cullcheck

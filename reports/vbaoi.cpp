@@ -70,13 +70,11 @@ std::string grouping_replay(const SceneSource& source, const VbaoiOptions& o, co
   Camera eye;
   eye.hfov = kTwoPi;
   eye.position = {e.position_a.x, e.position_a.y, o.graph.eye_height};
-  std::string from = camera_to_json_text(eye);
-  if (!from.empty() && from.back() == '\n') from.pop_back();
   return "cullcheck cell " + source.replay_flags() + " --method " + o.graph.method + " --cell " + std::to_string(e.node_a) +
          " --epsilon " + round_trip_text(o.graph.epsilon) + " --sampling " +
          std::string(cell_sampling_name(o.graph.sampling)) + " --eye-height " + round_trip_text(o.graph.eye_height) +
          " --cell-size " + round_trip_text(o.regions.cell_size) + " --cell-margin " + round_trip_text(o.regions.margin) +
-         " --nodes --from " + shell_quote(from) + " --to " + round_trip_text(e.position_b.x) + "," +
+         " --nodes --from " + camera_arg(eye) + " --to " + round_trip_text(e.position_b.x) + "," +
          round_trip_text(e.position_b.y);
 }
 

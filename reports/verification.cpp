@@ -20,20 +20,13 @@ std::vector<ObjectId> missing_from(const std::vector<ObjectId>& visible, const s
 }
 
 std::string replay_command(const SceneSource& source, const std::string& method, const Camera& camera) {
-  std::string camera_json = camera_to_json_text(camera);
-  if (!camera_json.empty() && camera_json.back() == '\n') camera_json.pop_back();
-  return "cullcheck verify " + source.replay_flags() + " --method " + method + " --camera " + shell_quote(camera_json);
+  return "cullcheck verify " + source.replay_flags() + " --method " + method + " --camera " + camera_arg(camera);
 }
 
 std::string region_replay_command(const SceneSource& source, const std::string& method, const Camera& centre,
                                   double radius, double turn, const Camera& viewpoint) {
-  auto text = [](const Camera& c) {
-    std::string t = camera_to_json_text(c);
-    if (!t.empty() && t.back() == '\n') t.pop_back();
-    return shell_quote(t);
-  };
-  return "cullcheck region " + source.replay_flags() + " --method " + method + " --camera " + text(centre) + " --radius " +
-         round_trip_text(radius) + " --turn " + round_trip_text(turn) + " --from " + text(viewpoint);
+  return "cullcheck region " + source.replay_flags() + " --method " + method + " --camera " + camera_arg(centre) + " --radius " +
+         round_trip_text(radius) + " --turn " + round_trip_text(turn) + " --from " + camera_arg(viewpoint);
 }
 
 namespace {
@@ -258,6 +251,8 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         out.pixels.rays += pixel->misdrawn_pixels;
         out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
         run.misdrawn_pixels.push_back(static_cast<double>(pixel->misdrawn_pixels));
+        run.blob_per_frame.push_back(pixel->largest_blob);
+        run.pixel_frames.push_back(index);
         run.misdrawn_total += pixel->misdrawn_pixels;
         run.error_frames += pixel->misdrawn_pixels > 0 ? 1 : 0;
         run.largest_blob = std::max(run.largest_blob, pixel->largest_blob);

@@ -101,6 +101,8 @@ struct MethodRun {
   std::vector<std::pair<std::string, std::size_t>> frames_equal_to;
   // The pixel oracle (VerificationOptions::pixels), over checked frames.
   std::vector<double> misdrawn_pixels;  // per checked frame
+  std::vector<std::uint64_t> blob_per_frame;      // the largest blob per checked frame
+  std::vector<std::size_t> pixel_frames;          // the frame number of each of them
   std::uint64_t misdrawn_total = 0;
   std::size_t error_frames = 0;         // checked frames with any misdrawn pixel
   std::uint64_t largest_blob = 0;       // largest 4-connected blob of misdrawn pixels, any frame

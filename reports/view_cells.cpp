@@ -51,11 +51,9 @@ std::vector<Camera> cell_viewpoints(const ViewCell& cell, const Camera& clip) {
 
 std::string cell_replay_command(const SceneSource& source, const std::string& method, std::uint32_t cell, double epsilon,
                                 CellSampling sampling, double eye_height, const Camera& from) {
-  std::string view = camera_to_json_text(from);
-  if (!view.empty() && view.back() == '\n') view.pop_back();
   return "cullcheck cell " + source.replay_flags() + " --method " + method + " --cell " + std::to_string(cell) +
          " --epsilon " + round_trip_text(epsilon) + " --sampling " + std::string(cell_sampling_name(sampling)) + " --eye-height " +
-         round_trip_text(eye_height) + " --from " + shell_quote(view);
+         round_trip_text(eye_height) + " --from " + camera_arg(from);
 }
 
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,

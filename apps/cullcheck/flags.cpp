@@ -49,6 +49,14 @@ CameraPath PathFlags::load(const Scene& scene) const {
   return generators::make_camera_path(kind, scene, seed, parse_json_flag(params, "path-params"));
 }
 
+CameraPath PathFlags::load(const Scene& scene, const std::string& camera_json) const {
+  if (camera_json.empty()) return load(scene);
+  CameraPath path;
+  path.kind = "single_camera";
+  path.frames.push_back(camera_from_json_text(camera_json));
+  return path;
+}
+
 nlohmann::json parse_json_flag(const std::string& text, const std::string& field) {
   try {
     return nlohmann::json::parse(text);

@@ -37,6 +37,8 @@ struct PathFlags {
   // The flags that rebuild this path, for replay commands.
   std::string replay_flags() const;
   CameraPath load(const Scene& scene) const;
+  // One camera (`--camera` JSON) as a one-frame path when given, else the path.
+  CameraPath load(const Scene& scene, const std::string& camera_json) const;
 };
 
 // Parses a JSON flag value, raising InputError naming the flag.

@@ -60,13 +60,7 @@ Runner add_gate(CLI::App& app) {
   sub->add_option("--junit", f->junit, "Also write the checks as JUnit XML (one test case per method and check)");
   return [f] {
     const Scene scene = f->scene.source.load();
-    CameraPath path;
-    if (!f->camera.empty()) {
-      path.kind = "single_camera";
-      path.frames.push_back(camera_from_json_text(f->camera));
-    } else {
-      path = f->path.load(scene);
-    }
+    CameraPath path = f->path.load(scene, f->camera);
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.oracle_stride = f->oracle_stride;

@@ -9,16 +9,6 @@
 #include "subjects/subject_method.hpp"
 
 namespace cullcheck::cli {
-namespace {
-
-std::string camera_text(const Camera& c) {
-  std::string t = camera_to_json_text(c);
-  if (!t.empty() && t.back() == '\n') t.pop_back();
-  return shell_quote(t);
-}
-
-}  // namespace
-
 void SubjectFlags::add(CLI::App& app, bool inline_visible) {
   app.add_option("--subject", subjects,
                  "An outside culling system: the command line of a program speaking the subject protocol on its "
@@ -57,7 +47,7 @@ void SubjectFlags::build(const Scene& scene, const SceneSource& source, const Ca
   // A failure replays the failing frame alone, with its own index (a temporal culler may depend on
   // it): `--frame N` of the path when there is one, else the one camera.
   auto where = [path_flags](std::size_t frame, const Camera& camera) {
-    return path_flags.empty() ? " --camera " + camera_text(camera) : " " + path_flags + " --frame " + std::to_string(frame);
+    return path_flags.empty() ? " --camera " + camera_arg(camera) : " " + path_flags + " --frame " + std::to_string(frame);
   };
   for (const std::string& file : pvs_files) {
     MethodUnderTest m;
@@ -84,7 +74,7 @@ void SubjectFlags::build(const Scene& scene, const SceneSource& source, const Ca
     m.outside = true;
     const std::string text = visible;
     m.replay = [=](std::size_t, const Camera& camera) {
-      return "cullcheck gate " + scene_flags + " --camera " + camera_text(camera) + " --visible " + shell_quote(text) + claim_flags;
+      return "cullcheck gate " + scene_flags + " --camera " + camera_arg(camera) + " --visible " + shell_quote(text) + claim_flags;
     };
     methods.push_back(std::move(m));
   }

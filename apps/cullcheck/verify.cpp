@@ -32,13 +32,7 @@ Runner add_verify(CLI::App& app) {
   return [f] {
     const Scene scene = f->scene.source.load();
     const std::vector<std::string> methods = parse_methods(f->methods);
-    CameraPath path;
-    if (!f->camera.empty()) {
-      path.kind = "single_camera";
-      path.frames.push_back(camera_from_json_text(f->camera));
-    } else {
-      path = f->path.load(scene);
-    }
+    CameraPath path = f->path.load(scene, f->camera);
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.max_replays = 10;
