@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev
   librapidcheck-dev libbenchmark-dev libgtest-dev libgmock-dev
   nlohmann-json3-dev libcli11-dev libspng-dev
+  python3
   libtinygltf-dev libtinyobjloader-dev libassimp-dev
 )
 missing=()
