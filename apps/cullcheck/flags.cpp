@@ -25,10 +25,12 @@ void SceneFlags::add(CLI::App& app) {
                  "Read the scene from this file instead of generating it: cullcheck scene JSON, glTF 2.0 (.glb, .gltf) or OBJ");
   const std::map<std::string, formats::IdSource> id_sources{{"node", formats::IdSource::node}, {"mesh", formats::IdSource::mesh}};
   app.add_option("--mesh-ids", source.mesh_ids, "glTF scenes: one object per node (node, the default) or per glTF mesh (mesh)")
-      ->transform(CLI::CheckedTransformer(id_sources, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(id_sources, CLI::ignore_case).description(""))
+      ->type_name("node|mesh");
   const std::map<std::string, formats::UpAxis> axes{{"y", formats::UpAxis::y}, {"z", formats::UpAxis::z}};
   app.add_option("--obj-up", source.obj_up, "OBJ scenes: the file's up axis, y or z (default z)")
-      ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case).description(""))
+      ->type_name("y|z");
 }
 
 void PathFlags::add(CLI::App& app, int default_frames) {
