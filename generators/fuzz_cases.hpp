@@ -41,9 +41,8 @@ struct FuzzCase {
 inline std::ostream& operator<<(std::ostream& os, const FuzzCase& c) {
   os << replay_args(c.spec) << " (" << c.kind << ", " << c.path.frames.size() << " frames)";
   for (const Camera& cam : c.path.frames) {
-    std::string t = camera_to_json_text(cam);
-    if (!t.empty() && t.back() == '\n') t.pop_back();
-    os << "\n  " << t;
+    os << "\n  ";
+    showValue(cam, os);
   }
   return os;
 }

@@ -238,6 +238,10 @@ expect_exit 0 "gate on a mesh scene" "$cc" gate --generator openings --params '{
   --path-params '{"frames":4}' --method all --subject "$subjects/minimal_subject" -o "$work/mesh.json"
 [ "$(json_field "$work/mesh.json" "len(d['skipped_methods']), [r['method'] for r in d['runs']]")" = "5 ['frustum', 'subject:minimal-box']" ] \
   && pass || fail "gate on a mesh scene: expected frustum and the subject to run, five 2.5D methods skipped"
+# Point and region methods alike say why they were skipped (5 of each).
+expect_exit 0 "verify on a mesh scene with region methods" "$cc" verify --generator openings --params '{"blocks_x":1,"blocks_y":1}' \
+  --path-params '{"frames":2}' --region-method all
+[ "$(grep -c '^skipped ' "$work/out")" = 10 ] && pass || fail "verify on a mesh scene: not every skipped method is named"
 "$cc" generate --generator openings --params '{"blocks_x":1,"blocks_y":1}' -o "$work/op.json" --glb "$work/op.glb" --obj "$work/op.obj" >/dev/null
 expect_exit 0 "gate reads a .glb scene" "$cc" gate --scene "$work/op.glb" --camera "$camera" --subject "$subjects/minimal_subject" \
   --method frustum -o "$work/glb.json"

@@ -29,6 +29,7 @@ struct CaseOutcome {
   std::string message;
   PathVerification verification;
   std::map<std::size_t, std::vector<ObjectId>> pvs_by_frame;
+  std::size_t objects = 0, triangles = 0;  // the case's scene
 };
 
 // Forwards to the subject and keeps each frame's answer, for the counterexample's pictures.
@@ -60,6 +61,8 @@ class Recording final : public CullingMethod {
 CaseOutcome run_case(const generators::FuzzCase& c, const FuzzOptions& options, const std::string& dir) {
   CaseOutcome out;
   const Scene scene = generators::scene_of(c.spec);
+  out.objects = scene.object_count();
+  out.triangles = scene.triangle_count();
   SubjectOptions so;
   so.command = options.subject;
   so.files = write_scene_files(scene, dir);
@@ -130,15 +133,14 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     failing = true;
     // Shrinking accepts a smaller case only when it fails too, so the last failing case seen is
     // the minimal one RapidCheck reports.
-    const Scene scene = generators::scene_of(c.spec);
     result.failure = FuzzFailure{c,
                                  outcome.message,
                                  outcome.subject_error,
                                  std::move(outcome.verification),
                                  std::move(outcome.pvs_by_frame),
-                                 scene.object_count(),
-                                 scene.triangle_count(),
-                                 first ? scene.object_count() : result.failure->first_objects,
+                                 outcome.objects,
+                                 outcome.triangles,
+                                 first ? outcome.objects : result.failure->first_objects,
                                  first ? c.path.frames.size() : result.failure->first_frames};
     RC_FAIL(outcome.message);
   };

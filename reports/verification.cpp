@@ -41,16 +41,22 @@ bool region_holds(const ViewRegion& region, const Camera& c) {
   return std::abs(std::remainder(c.yaw - a.yaw, kTwoPi)) + std::abs(c.pitch - a.pitch) + std::abs(c.roll - a.roll) <= region.turn;
 }
 
-// A building the oracle saw at `frame` and a method culled, with the oracle's witness.
+// An object the oracle saw at `frame` and a method culled, with its witness: the oracle's when
+// it saw the object, else (`pixels`, model "pixel_ids") the pixel ray that showed it.
 Violation violation_of(std::size_t frame, ObjectId building, const Camera& camera, const oracle::OracleAnswer& answer,
-                       std::string replay) {
+                       std::string replay, const oracle::PixelComparison* pixels = nullptr) {
   Violation v;
   v.frame = frame;
   v.building = building;
   v.camera = camera;
+  v.replay = std::move(replay);
+  if (!std::binary_search(answer.visible.begin(), answer.visible.end(), building) && pixels) {
+    v.model = "pixel_ids";
+    v.witness = oracle::describe(pixels->witnesses.at(building));
+    return v;
+  }
   v.model = answer.model;
   if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(building));
-  v.replay = std::move(replay);
   return v;
 }
 
@@ -99,7 +105,8 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   std::vector<std::pair<std::string, std::string>> skipped;
   std::vector<MethodUnderTest> engines = builtin_methods(scene, source, methods, method_options, options, &skipped);
   PathVerification out = verify_path(scene, source, path, engines, method_options, options);
-  out.skipped_methods = std::move(skipped);
+  // Point methods first, then the region methods verify_path skipped itself.
+  out.skipped_methods.insert(out.skipped_methods.begin(), skipped.begin(), skipped.end());
   return out;
 }
 
@@ -287,18 +294,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         ++tally->frames;
         for (ObjectId id : missed) {
           if (tally->kept.size() >= options.max_replays) break;
-          if (std::binary_search(answer.visible.begin(), answer.visible.end(), id)) {
-            tally->kept.push_back(violation_of(index, id, camera, answer, engines[m].replay(index, camera)));
-          } else {
-            Violation x;
-            x.frame = index;
-            x.building = id;
-            x.camera = camera;
-            x.model = "pixel_ids";
-            x.witness = oracle::describe(pixel->witnesses.at(id));
-            x.replay = engines[m].replay(index, camera);
-            tally->kept.push_back(std::move(x));
-          }
+          tally->kept.push_back(violation_of(index, id, camera, answer, engines[m].replay(index, camera), pixel ? &*pixel : nullptr));
         }
       }
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/camera_matrices.hpp"
+#include "core/formats/mesh_formats.hpp"
 #include "core/utf8.hpp"
 #include "core/scene_io.hpp"
 #include "subjects/subject_error.hpp"
@@ -46,11 +47,11 @@ json hello(const Scene& scene, const SceneFiles& files, std::size_t frames) {
   // "node" is the object's node in the .glb (core/formats: building_<id> / mesh_<id>), "name" the
   // name it came with (an imported mesh's), else the node's.
   for (const Building& b : scene.buildings) {
-    const std::string node = "building_" + std::to_string(b.id);
+    const std::string node = formats::building_node_name(b.id);
     objects.push_back({{"id", b.id}, {"node", node}, {"name", node}, {"kind", "building"}, {"bounds", box_json(b.bounds)}});
   }
   for (const MeshObject& m : scene.meshes) {
-    const std::string node = "mesh_" + std::to_string(m.id);
+    const std::string node = formats::mesh_node_name(m.id);
     objects.push_back({{"id", m.id}, {"node", node}, {"name", m.name.empty() ? node : m.name}, {"kind", "mesh"}, {"bounds", box_json(m.bounds)}});
   }
   return {{"type", "hello"},

@@ -128,7 +128,6 @@ CullResult SubjectMethod::cull(const Camera& camera) {
   const double round_trip = ms_since(start);
   CullResult result;
   result.pvs = visible.ids;
-  result.stats.buildings_tested = 0;
   result.stats.cull_ms = visible.cull_ms.value_or(round_trip);
   result.stats.protocol_ms = visible.cull_ms ? std::max(0.0, round_trip - *visible.cull_ms) : round_trip;
   ++timing_.frames;

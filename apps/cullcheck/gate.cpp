@@ -74,19 +74,9 @@ Runner add_gate(CLI::App& app) {
       path.frames = {path.frames[static_cast<std::size_t>(f->frame)]};
       options.first_frame = static_cast<std::size_t>(f->frame);
     }
-    std::vector<std::pair<std::string, std::string>> skipped;
-    std::vector<MethodUnderTest> methods =
-        builtin_methods(scene, f->scene.source, parse_methods(f->methods), f->tuning.options, options, &skipped);
     const std::string scene_flags = f->scene.source.replay_flags();
-    PathVerification v;
-    f->subjects.build(scene, f->scene.source, path, f->camera.empty() ? f->path.replay_flags() : "", methods, v.aborted);
-    if (methods.empty() && !v.aborted)
-      throw InputError("command line", "--subject", "nothing to check: give --subject, --pvs, --visible or --method");
-    if (!v.aborted) {
-      v = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
-    }
-    for (auto& s : skipped) v.skipped_methods.push_back(s);
-    methods.clear();  // subjects say bye and exit here, before the report is written
+    const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->camera.empty() ? f->path.replay_flags() : "",
+                                                  parse_methods(f->methods), f->tuning.options, options, /*require_any=*/true);
     ReportInputs in;
     in.method_options = f->tuning.options;
     in.scene = &scene;
@@ -98,6 +88,7 @@ Runner add_gate(CLI::App& app) {
     if (f->max_overestimation > 0.0) in.thresholds.max_overestimation = f->max_overestimation;
     nlohmann::json document = build_report(in);
     const GateVerdict verdict = gate_verdict(v, scene_flags, in.thresholds);
+    // Bytes that are not UTF-8 (a subject's garbage) are replaced rather than fail the report.
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
     std::cout << summary_table(v);
@@ -109,7 +100,6 @@ Runner add_gate(CLI::App& app) {
         std::cout << "over budget: " << r.method << " at frame " << x.frame << ": " << x.witness << "\n  replay: " << x.replay << "\n";
     }
     std::cout << "gate: " << (verdict.passed() ? "passed" : "FAILED") << "; wrote " << f->output << "\n";
-    // Report JSON replaces bytes that are not UTF-8 (a subject's garbage) rather than fail on them.
     if (v.aborted) std::cerr << "cullcheck: " << v.aborted->message << "\n";
     return verdict.exit_code();
   };

@@ -134,18 +134,10 @@ Runner add_report(CLI::App& app) {
     options.region_radius = f->regions.radius;
     options.region_turn = f->regions.turn;
     options.region_on_tiling = f->regions.placement == "tiling";
-    std::vector<std::pair<std::string, std::string>> skipped;
-    std::vector<MethodUnderTest> methods =
-        builtin_methods(scene, f->scene.source, parse_methods(f->methods), f->tuning.options, options, &skipped);
-    std::optional<Abort> aborted;
-    f->subjects.build(scene, f->scene.source, path, f->path.replay_flags(), methods, aborted);
     std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
               << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
-    PathVerification v;
-    if (!aborted) v = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
-    v.aborted = v.aborted ? v.aborted : aborted;
-    v.skipped_methods.insert(v.skipped_methods.begin(), skipped.begin(), skipped.end());
-    methods.clear();  // subjects say bye and exit here
+    const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags(), parse_methods(f->methods),
+                                                  f->tuning.options, options, /*require_any=*/false);
     f->claim_options.sampling = f->sampling.sampling;
     ReportInputs in;
     in.method_options = f->tuning.options;

@@ -107,4 +107,20 @@ void SubjectFlags::build(const Scene& scene, const SceneSource& source, const Ca
   }
 }
 
+PathVerification SubjectFlags::verify(const Scene& scene, const SceneSource& source, const CameraPath& path,
+                                      const std::string& path_flags, const std::vector<std::string>& builtin,
+                                      const MethodOptions& method_options, const VerificationOptions& options, bool require_any) {
+  std::vector<std::pair<std::string, std::string>> skipped;
+  std::vector<MethodUnderTest> methods = builtin_methods(scene, source, builtin, method_options, options, &skipped);
+  std::optional<Abort> aborted;
+  build(scene, source, path, path_flags, methods, aborted);
+  if (require_any && methods.empty() && !aborted)
+    throw InputError("command line", "--subject", "nothing to check: give --subject, --pvs, --visible or --method");
+  PathVerification v;
+  if (aborted) v.aborted = aborted;
+  else v = verify_path(scene, source, path, methods, method_options, options);
+  v.skipped_methods.insert(v.skipped_methods.begin(), skipped.begin(), skipped.end());
+  return v;  // `methods` goes out of scope first: the subjects say bye and exit
+}
+
 }  // namespace cullcheck::cli

@@ -31,6 +31,13 @@ struct SubjectFlags {
   // is one camera); a program that fails its handshake sets `aborted` and is not added.
   void build(const Scene& scene, const SceneSource& source, const CameraPath& path, const std::string& path_flags,
              std::vector<MethodUnderTest>& methods, std::optional<Abort>& aborted);
+  // The built-in methods named `builtin` and these subjects along `path` (verify_path): a subject
+  // whose handshake fails stops the run before its first frame (`aborted`), and every subject
+  // has said bye and exited when this returns. With `require_any`, nothing to check is an
+  // InputError.
+  PathVerification verify(const Scene& scene, const SceneSource& source, const CameraPath& path, const std::string& path_flags,
+                          const std::vector<std::string>& builtin, const MethodOptions& method_options,
+                          const VerificationOptions& options, bool require_any);
 
  private:
   std::unique_ptr<WorkDir> work_;

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/formats/mesh_formats.hpp"
 #include "core/scene.hpp"
 
 namespace cullcheck::formats::detail {
@@ -12,7 +13,7 @@ namespace cullcheck::formats::detail {
 // `closed` (finish_mesh), which a writer does not need.
 MeshObject building_surface(const Building& b);
 
-inline std::string building_name(ObjectId id) { return "building_" + std::to_string(id); }
-inline std::string mesh_name(ObjectId id) { return "mesh_" + std::to_string(id); }
+inline std::string building_name(ObjectId id) { return building_node_name(id); }
+inline std::string mesh_name(ObjectId id) { return mesh_node_name(id); }
 
 }  // namespace cullcheck::formats::detail

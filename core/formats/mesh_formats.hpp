@@ -76,6 +76,10 @@ inline constexpr std::size_t kMaxNodes = 50'000'000;
 
 Scene read_gltf(const std::string& path, const ImportOptions& options = {}, ImportReport* report = nullptr);
 Scene read_obj(const std::string& path, const ImportOptions& options = {}, ImportReport* report = nullptr);
+// The name an object's glTF node / OBJ group is written with (a subject maps nodes to ids by it).
+inline std::string building_node_name(ObjectId id) { return "building_" + std::to_string(id); }
+inline std::string mesh_node_name(ObjectId id) { return "mesh_" + std::to_string(id); }
+
 // By extension (case-insensitive): .json, .glb, .gltf, .obj; anything else is an InputError.
 Scene read_scene_file_any(const std::string& path, const ImportOptions& options = {}, ImportReport* report = nullptr);
 
