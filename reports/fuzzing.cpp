@@ -2,6 +2,7 @@
 
 #include <rapidcheck.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <sstream>
@@ -27,8 +28,10 @@ struct CaseOutcome {
   bool failed = false;
   bool subject_error = false;
   std::string message;
+  std::string failed_method;
   PathVerification verification;
-  std::map<std::size_t, std::vector<ObjectId>> pvs_by_frame;
+  std::map<std::string, std::map<std::size_t, std::vector<ObjectId>>> pvs_by_frame;  // by method
+  std::vector<std::string> unavailable;    // built-in methods that cannot run on the case's scene
   std::size_t objects = 0, triangles = 0;  // the case's scene
 };
 
@@ -57,33 +60,52 @@ class Recording final : public CullingMethod {
   std::size_t frame_ = 0;
 };
 
-// One case: a fresh run of the subject on the case's scene and path, held to the oracle.
+// The replay of one frame of a case: `cullcheck gate` with the subject or the built-in method.
+std::string gate_replay(const SceneSource& source, const FuzzOptions& options, const std::string& method, const Camera& camera) {
+  const std::string who = options.subject.empty() ? " --method " + method : " --subject " + shell_quote(options.subject);
+  return "cullcheck gate " + source.replay_flags() + who + " --camera " + camera_arg(camera);
+}
+
+// One case: a fresh run of the subject (or fresh built-in methods) on the case's scene and path,
+// held to the oracle.
 CaseOutcome run_case(const generators::FuzzCase& c, const FuzzOptions& options, const std::string& dir) {
   CaseOutcome out;
   const Scene scene = generators::scene_of(c.spec);
   out.objects = scene.object_count();
   out.triangles = scene.triangle_count();
-  SubjectOptions so;
-  so.command = options.subject;
-  so.files = write_scene_files(scene, dir);
-  so.stderr_path = dir + "/subject.stderr";
-  so.frame_timeout = options.frame_timeout;
-  so.hello_timeout = options.hello_timeout;
-  so.exit_timeout = 1.0;
   VerificationOptions vo;
   vo.oracle.sampling = options.sampling;
   vo.max_replays = 5;
   vo.pixels = options.pixels;
+  vo.reference_method.clear();  // the fuzzer judges each method by its own claim alone
+  vo.measure_bare_embree = false;
   const SceneSource source{c.spec.generator, c.spec.seed, c.spec.params.dump(), ""};
   std::vector<MethodUnderTest> methods;
+  std::vector<std::string> names;
   try {
-    MethodUnderTest m;
-    m.method = std::make_unique<Recording>(std::make_unique<SubjectMethod>(scene, so, c.path.frames.size()), out.pvs_by_frame);
-    m.outside = true;
-    m.replay = [source, command = options.subject](std::size_t, const Camera& camera) {
-      return "cullcheck gate " + source.replay_flags() + " --subject " + shell_quote(command) + " --camera " + camera_arg(camera);
-    };
-    methods.push_back(std::move(m));
+    if (options.subject.empty()) {
+      std::vector<std::pair<std::string, std::string>> skipped;
+      methods = builtin_methods(scene, source, options.methods, MethodOptions{}, vo, &skipped);
+      for (const auto& [name, why] : skipped) out.unavailable.push_back(name);
+    } else {
+      SubjectOptions so;
+      so.command = options.subject;
+      so.files = write_scene_files(scene, dir);
+      so.stderr_path = dir + "/subject.stderr";
+      so.frame_timeout = options.frame_timeout;
+      so.hello_timeout = options.hello_timeout;
+      so.exit_timeout = 1.0;
+      MethodUnderTest m;
+      m.method = std::make_unique<SubjectMethod>(scene, so, c.path.frames.size());
+      m.outside = true;
+      methods.push_back(std::move(m));
+    }
+    for (MethodUnderTest& m : methods) {
+      const std::string name = m.method->name();
+      names.push_back(name);
+      m.method = std::make_unique<Recording>(std::move(m.method), out.pvs_by_frame[name]);
+      m.replay = [source, &options, name](std::size_t, const Camera& camera) { return gate_replay(source, options, name, camera); };
+    }
     out.verification = verify_path(scene, source, c.path, methods, {}, vo);
   } catch (const SubjectError& e) {
     out.verification.aborted = Abort{"subject", e.frame(), SubjectError::kind_name(e.kind()), e.what()};
@@ -95,9 +117,11 @@ CaseOutcome run_case(const generators::FuzzCase& c, const FuzzOptions& options, 
   for (const GateCheck& check : verdict.checks) {
     if (check.outcome != GateCheck::Outcome::failed && check.outcome != GateCheck::Outcome::error) continue;
     out.message += (out.message.empty() ? "" : "; ") + check.check + ": " + check.message;
+    if (out.failed_method.empty()) out.failed_method = check.method;
   }
   if (out.verification.aborted && out.message.find(out.verification.aborted->message) == std::string::npos)
     out.message += (out.message.empty() ? "" : "; ") + out.verification.aborted->message;
+  if (out.failed_method.empty() && !names.empty()) out.failed_method = names.front();
   return out;
 }
 
@@ -107,7 +131,20 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
   const auto start = Clock::now();
   FuzzResult result;
   WorkDir work(options.work_dir);
-  {  // The handshake on a one-building scene tells what the subject takes.
+  if (options.subject.empty()) {
+    // Built-in methods: every kind of camera (a horizon method skips orthographic frames itself,
+    // and they are counted), each judged by its own claim.
+    if (options.methods.empty()) throw InputError("fuzz", "--method", "names no method (and no --subject was given)");
+    const std::vector<std::string> known = method_names();
+    for (const std::string& name : options.methods)
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        throw InputError("fuzz", "--method", "unknown method '" + name + "'");
+    result.ready.orthographic = true;
+    result.ready.claim.conservative = true;
+    result.built_in = true;
+    result.methods = options.methods;
+    for (std::size_t i = 0; i < options.methods.size(); ++i) result.subject_name += (i ? "," : "") + options.methods[i];
+  } else {  // The handshake on a one-building scene tells what the subject takes.
     Scene probe;
     probe.buildings.push_back(box_building(0, -5, -5, 5, 5, 10));
     SubjectOptions so;
@@ -127,17 +164,27 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     if (failing) ++result.shrink_runs;
     else ++result.cases, ++result.kinds[c.kind], ++result.scenes[c.spec.generator];
     CaseOutcome outcome = run_case(c, options, work.path());
+    if (!failing) {
+      result.oracle_frames += outcome.verification.oracle.frames_checked;
+      for (const MethodRun& run : outcome.verification.runs) {
+        result.checked_frames[run.method] += run.checked_pvs_size.size();
+        result.skipped_frames[run.method] += run.frames_skipped;
+      }
+      for (const std::string& name : outcome.unavailable) result.skipped_frames[name] += c.path.frames.size();
+    }
     if (!outcome.failed) return;
     const bool first = !failing;
     if (first) result.seconds_to_failure = seconds_since(start);
     failing = true;
     // Shrinking accepts a smaller case only when it fails too, so the last failing case seen is
     // the minimal one RapidCheck reports.
+    auto& pvs = outcome.pvs_by_frame[outcome.failed_method];
     result.failure = FuzzFailure{c,
+                                 outcome.failed_method,
                                  outcome.message,
                                  outcome.subject_error,
                                  std::move(outcome.verification),
-                                 std::move(outcome.pvs_by_frame),
+                                 std::move(pvs),
                                  outcome.objects,
                                  outcome.triangles,
                                  first ? outcome.objects : result.failure->first_objects,
@@ -188,11 +235,16 @@ nlohmann::json fuzz_json(const FuzzResult& r) {
                       {"seconds_to_failure", r.failure ? nlohmann::json(r.seconds_to_failure) : nlohmann::json(nullptr)},
                       {"seconds_total", r.seconds_total},
                       {"cases_by_path_kind", r.kinds},
-                      {"cases_by_scene_generator", r.scenes}};
+                      {"cases_by_scene_generator", r.scenes},
+                      {"oracle_frames", r.oracle_frames},
+                      {"checked_frames_by_method", r.checked_frames},
+                      {"skipped_frames_by_method", r.skipped_frames}};
+  if (r.built_in) j["built_in_methods"] = r.methods;
   if (r.ready.claim.pixel_error_budget) j["pixel_error_budget"] = *r.ready.claim.pixel_error_budget;
   if (r.failure) {
     const FuzzFailure& f = *r.failure;
-    j["failure"] = {{"message", f.message},
+    j["failure"] = {{"method", f.method},
+                    {"message", f.message},
                     {"subject_error", f.subject_error},
                     {"scene", {{"generator", f.minimal.spec.generator}, {"seed", f.minimal.spec.seed}, {"parameters", f.minimal.spec.params}}},
                     {"objects", f.objects},
@@ -212,6 +264,15 @@ std::string fuzz_summary(const FuzzResult& r, const std::string& dir) {
   const char* sep = " (";
   for (const auto& [kind, n] : r.kinds) out << sep << kind << " " << n, sep = ", ";
   out << (r.kinds.empty() ? "" : ")") << "\n";
+  out << "oracle-checked frames (" << r.oracle_frames << " oracle answers):";
+  sep = " ";
+  for (const auto& [method, n] : r.checked_frames) {
+    out << sep << method << " " << n;
+    if (const auto skipped = r.skipped_frames.find(method); skipped != r.skipped_frames.end() && skipped->second > 0)
+      out << " (" << skipped->second << " skipped)";
+    sep = ", ";
+  }
+  out << "\n";
   if (!r.failure) {
     out << "passed " << r.cases << " cases in " << r.seconds_total << " s\n";
     return out.str();
@@ -221,7 +282,7 @@ std::string fuzz_summary(const FuzzResult& r, const std::string& dir) {
       << r.shrinks_accepted << " accepted) from " << f.first_objects << " objects and " << f.first_frames << " frames to "
       << f.objects << " objects, " << f.triangles << " triangles, "
       << f.minimal.path.frames.size() << " frames (" << f.minimal.kind << ")\n"
-      << "  " << f.message << "\n"
+      << "  " << f.method << ": " << f.message << "\n"
       << "  counterexample: " << dir << "/ (replay: sh " << dir << "/replay.sh)\n";
   return out.str();
 }
@@ -250,6 +311,31 @@ ClaimCheck fuzz_claim(const FuzzResult& r, const std::string& replay) {
   return c;
 }
 
+std::vector<ClaimCheck> fuzz_claims(const FuzzResult& r, const std::string& replay) {
+  if (!r.built_in) return {fuzz_claim(r, replay)};
+  std::vector<ClaimCheck> out;
+  for (const std::string& method : r.methods) {
+    ClaimCheck c;
+    c.method = method;
+    c.source = "cullcheck fuzz --method (built-in, in process)";
+    c.id = method + "-conservative-fuzzed";
+    c.statement = "never culls an object the oracle sees, on any generated scene and pathological camera path";
+    const auto checked = r.checked_frames.find(method);
+    c.frames_checked = checked == r.checked_frames.end() ? 0 : checked->second;
+    const bool refuted = r.failure && r.failure->method == method;
+    c.holds = !refuted;
+    c.search_seconds = r.failure ? r.seconds_to_failure : r.seconds_total;
+    if (refuted) {
+      c.violations = 1;
+      c.counterexample_replay = replay;
+      c.counterexample_detail = r.failure->message + " (shrunk to " + std::to_string(r.failure->objects) + " objects, " +
+                                std::to_string(r.failure->minimal.path.frames.size()) + " frames, " + r.failure->minimal.kind + ")";
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 std::string write_counterexample(const FuzzResult& result, const FuzzOptions& options, const std::string& dir) {
   namespace fs = std::filesystem;
   if (!result.failure) return "";
@@ -261,8 +347,9 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
   write_scene_files(scene, dir);
   write_text_file_atomically(dir + "/path.json", path_to_json_text(f.minimal.path));
   if (f.minimal.path.frames.size() == 1) write_text_file_atomically(dir + "/camera.json", camera_to_json_text(f.minimal.path.frames[0]));
-  const std::string replay = "cullcheck gate --scene \"$here/scene.json\" --path \"$here/path.json\" --subject " +
-                             shell_quote(options.subject) + " --oracle-stride 1 -o \"$here/gate.json\"";
+  const std::string who = options.subject.empty() ? "--method " + f.method : "--subject " + shell_quote(options.subject);
+  const std::string replay = "cullcheck gate --scene \"$here/scene.json\" --path \"$here/path.json\" " + who +
+                             " --oracle-stride 1 -o \"$here/gate.json\"";
   write_text_file_atomically(dir + "/replay.sh", "#!/bin/sh\n# Replays the fuzzer's minimal counterexample: " + f.message +
                                                      "\nhere=$(cd \"$(dirname \"$0\")\" && pwd)\n" + replay + "\n");
   fs::permissions(dir + "/replay.sh", fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add, ec);
@@ -270,10 +357,9 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
   // The ledger's replay names the folder itself (replay.sh finds its files wherever it is moved).
   const std::string here = fs::absolute(dir).string();
   const std::string replay_here = "cullcheck gate --scene " + shell_quote(here + "/scene.json") + " --path " +
-                                  shell_quote(here + "/path.json") + " --subject " + shell_quote(options.subject);
+                                  shell_quote(here + "/path.json") + " " + who;
   doc["replay"] = replay_here;
-  doc["generator_replay"] = "cullcheck gate " + generators::replay_args(f.minimal.spec) + " --path path.json --subject " +
-                            shell_quote(options.subject);
+  doc["generator_replay"] = "cullcheck gate " + generators::replay_args(f.minimal.spec) + " --path path.json " + who;
   // The pictures of the first failing frame (none when the subject failed before answering one).
   std::optional<std::size_t> frame;
   if (!f.verification.runs.empty()) {

@@ -1,10 +1,14 @@
-// Fuzzing an outside culling system (README "Fuzzing an outside program"): RapidCheck draws
+// Fuzzing a culling system (README "Fuzzing an outside program"): RapidCheck draws
 // small seeded scenes (cities, and mesh scenes with openings) and short camera paths of the
 // kinds real cullers get wrong (generators/fuzz_cases.hpp), each case is sent to a fresh run of
 // the subject over the subject protocol and held to the oracle like `cullcheck gate`, and the
 // first failure is shrunk to a small case. A failure is a miss by a subject that claims to be
 // conservative (or a misdrawn pixel), a frame above an approximate subject's pixel budget, or
 // the subject crashing, hanging or lying.
+//
+// The same loop runs built-in engine methods in process instead (FuzzOptions::methods): every
+// case's oracle answer checks all of them at once, which makes it the long "soak" run that counts
+// oracle-checked frames per method (README "Soak runs").
 //
 // The same seed and budget draw the same cases on every machine; the subject's own answers
 // decide the rest.
@@ -14,6 +18,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "generators/fuzz_cases.hpp"
 #include "oracle/sampling.hpp"
@@ -25,6 +30,7 @@ namespace cullcheck {
 
 struct FuzzOptions {
   std::string subject;        // command line, run by /bin/sh -c
+  std::vector<std::string> methods;  // or built-in methods by name, run in process (subject empty)
   int budget = 100;           // cases that must pass
   std::uint64_t seed = 1;
   double frame_timeout = 10.0;
@@ -36,6 +42,7 @@ struct FuzzOptions {
 
 struct FuzzFailure {
   generators::FuzzCase minimal;
+  std::string method;           // the method that failed (the subject's name for a subject)
   std::string message;          // the check that failed, with the first violation
   bool subject_error = false;   // crashed, hung or lied rather than culled wrongly
   PathVerification verification;  // of the minimal case
@@ -45,7 +52,9 @@ struct FuzzFailure {
 };
 
 struct FuzzResult {
-  std::string subject_name;
+  std::string subject_name;     // the subject's name, or the built-in methods' names joined by commas
+  bool built_in = false;        // built-in methods (FuzzOptions::methods) rather than a subject
+  std::vector<std::string> methods;
   protocol::Ready ready;
   int cases = 0;                // cases run up to and including the first failure (all, when none failed)
   int shrink_runs = 0;          // cases run while shrinking it
@@ -53,10 +62,15 @@ struct FuzzResult {
   double seconds_to_failure = 0.0, seconds_total = 0.0;
   std::map<std::string, int> kinds;   // cases run by path kind: that the hard cases were reached
   std::map<std::string, int> scenes;  // by scene generator
+  // Frames whose answer the oracle checked, and frames the method skipped (an orthographic camera
+  // for a horizon method), by method, over the cases before the first failure.
+  std::map<std::string, std::uint64_t> checked_frames, skipped_frames;
+  std::uint64_t oracle_frames = 0;  // oracle answers computed (one per frame, shared by the methods)
   std::optional<FuzzFailure> failure;
 };
 
-// Throws SubjectError when the subject cannot even answer a hello for a one-building scene.
+// Throws SubjectError when the subject cannot even answer a hello for a one-building scene, and
+// InputError for an unknown method name.
 FuzzResult fuzz_subject(const FuzzOptions& options);
 
 // The minimal counterexample as a self-contained folder: scene.json, scene.glb, path.json
@@ -69,7 +83,8 @@ nlohmann::json fuzz_json(const FuzzResult& result);
 // The lines `cullcheck fuzz` prints: cases by kind, and the shrunk failure.
 std::string fuzz_summary(const FuzzResult& result, const std::string& counterexample_dir);
 // The claims ledger's entry: the subject's declared claim, refuted by the fuzzer's counterexample
-// (`replay`) or holding over the budget.
+// (`replay`) or holding over the budget. For built-in methods, one entry per method.
 ClaimCheck fuzz_claim(const FuzzResult& result, const std::string& replay);
+std::vector<ClaimCheck> fuzz_claims(const FuzzResult& result, const std::string& replay);
 
 }  // namespace cullcheck

@@ -223,7 +223,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       }
     if (frame % out.oracle.oracle_stride != 0) continue;
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
-    const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, first_log.rays.empty() ? &first_log : nullptr);
+    const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
     ++out.oracle.frames_checked;
     out.oracle.seconds += answer.elapsed_seconds;
     if (answer.sampling) {
@@ -322,7 +322,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     run.frames_with_violations = tally.frames;
     run.violations = std::move(tally.kept);
   }
-  if (!first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth.rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
+  if (options.measure_bare_embree && !first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth.rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
   return out;
 }
 

@@ -21,6 +21,10 @@ namespace cullcheck {
 struct VerificationOptions {
   oracle::OracleOptions oracle;
   std::size_t oracle_stride = 1;  // check every n-th frame with the oracle (timings use all)
+  // Re-cast the first frame's rays in a bare Embree loop for at least 0.2 s, the report's
+  // yardstick for the oracle's speed (OracleSummary::bare_embree_rays_per_second). Off for the
+  // fuzzer's many small cases, where it would be most of the time.
+  bool measure_bare_embree = true;
   std::size_t max_replays = 5;    // violations kept in full per method (all are counted)
   // Command-line flags that rebuild the path (e.g. "--path-kind street_walk --path-seed 1
   // --path-params '{...}'"): an incremental method's violation replays along the whole path.

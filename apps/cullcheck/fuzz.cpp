@@ -1,9 +1,12 @@
 // cullcheck fuzz: RapidCheck drives small scenes and pathological camera paths into an outside
-// culling system, holds its answers to the oracle and shrinks the first failure to a small case,
-// written as a self-contained folder (scene, path, replay script, pictures). Exit 1 when a
-// counterexample was found, 0 when the budget passed.
+// culling system (or built-in methods, in process: the soak run), holds its answers to the
+// oracle and shrinks the first failure to a small case, written as a self-contained folder
+// (scene, path, replay script, pictures). Exit 1 when a counterexample was found, 0 when the
+// budget passed.
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
@@ -11,12 +14,29 @@
 #include "reports/fuzzing.hpp"
 
 namespace cullcheck::cli {
+namespace {
+
+// "a,b", "all", or "conservative": every point method that claims conservativeness (on the
+// one-building probe scene; a claim does not depend on the scene).
+std::vector<std::string> fuzz_method_names(const std::string& text) {
+  std::vector<std::string> out;
+  if (text == "conservative") {
+    Scene probe;
+    probe.buildings.push_back(box_building(0, -5, -5, 5, 5, 10));
+    for (const std::string& name : method_names())
+      if (make_method(name, probe)->claims_conservative()) out.push_back(name);
+    return out;
+  }
+  return parse_methods(text);
+}
+
+}  // namespace
 
 Runner add_fuzz(CLI::App& app) {
   struct Flags {
     FuzzOptions fuzz;
     SamplingFlags sampling;
-    std::string out = "cullcheck-counterexample", output;
+    std::string out = "cullcheck-counterexample", output, methods;
     bool no_pixels = false;
   };
   auto f = std::make_shared<Flags>();
@@ -24,7 +44,13 @@ Runner add_fuzz(CLI::App& app) {
       "fuzz", "Fuzz an outside culling system: seeded scenes (cities, walls with openings) and pathological camera paths "
               "(viewport edges, lateral moves past thin walls, pitch/roll, orthographic, near plane) held to the oracle; "
               "the first failure is shrunk and written as a folder that replays it. Exit 1 when one was found");
-  sub->add_option("--subject", f->fuzz.subject, "The subject's command line (run by /bin/sh -c; README, subject protocol)")->required();
+  CLI::Option* subject =
+      sub->add_option("--subject", f->fuzz.subject, "The subject's command line (run by /bin/sh -c; README, subject protocol)");
+  CLI::Option* methods = sub->add_option("--method", f->methods,
+                                         "Or built-in methods, comma-separated or 'conservative' (every method that claims it), "
+                                         "run in process: each case's oracle answer checks them all (the soak run)");
+  subject->excludes(methods);
+  methods->excludes(subject);
   sub->add_option("--budget", f->fuzz.budget, "Cases that must pass (RapidCheck's max_success)")
       ->capture_default_str()
       ->check(CLI::Range(1, 10000000));
@@ -37,6 +63,8 @@ Runner add_fuzz(CLI::App& app) {
   sub->add_flag("--no-pixels", f->no_pixels, "Skip the pixel oracle for conservative subjects");
   f->sampling.add(*sub);
   return [f] {
+    if (f->fuzz.subject.empty() && f->methods.empty()) throw std::invalid_argument("fuzz: give --subject or --method");
+    if (!f->methods.empty()) f->fuzz.methods = fuzz_method_names(f->methods);
     f->fuzz.sampling = f->sampling.sampling;
     f->fuzz.pixels = !f->no_pixels;
     const FuzzResult r = fuzz_subject(f->fuzz);
