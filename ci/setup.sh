@@ -11,8 +11,9 @@ cmake --build --preset default -j "$(nproc)"
 # on its own 10,086-building city with 10, 100 and 1,000 clients, a built-in method run through
 # the subject protocol beside itself (the same PVS at every frame), and the fuzzer on the buggy
 # example subject (its shrunk counterexample in cullcheck-counterexample/; a finding about the
-# example, reported in report.json's "fuzz" and the claims ledger, not a failure of the gate).
+# example, reported in report.json's "fuzz" and the claims ledger, not a failure of the gate),
+# and a short soak of the built-in conservative methods (report.json's "soak").
 ./build/apps/cullcheck/cullcheck report --table-4-1 --view-cells --view-cell-stride 10 --view-cell-oracle-cells 3 \
   --vbaoi --subject build/examples/subjects/builtin_subject \
-  --fuzz-subject build/examples/subjects/buggy_sphere_subject --fuzz-budget 200 --fuzz-seed 1 \
+  --fuzz-subject build/examples/subjects/buggy_sphere_subject --fuzz-budget 200 --fuzz-seed 1 --soak-budget 2000 \
   --output report.json

@@ -69,6 +69,9 @@ struct FuzzResult {
   std::optional<FuzzFailure> failure;
 };
 
+// The point methods that claim conservativeness (the soak run's `--method conservative`).
+std::vector<std::string> conservative_method_names();
+
 // Throws SubjectError when the subject cannot even answer a hello for a one-building scene, and
 // InputError for an unknown method name.
 FuzzResult fuzz_subject(const FuzzOptions& options);

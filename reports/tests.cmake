@@ -8,3 +8,8 @@ add_test(NAME pictures_test COMMAND pictures_test)
 add_executable(gate_verdict_test ${CMAKE_CURRENT_LIST_DIR}/tests/gate_verdict_test.cpp ${CMAKE_CURRENT_LIST_DIR}/tests/junit_test.cpp)
 target_link_libraries(gate_verdict_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
 add_test(NAME gate_verdict_test COMMAND gate_verdict_test)
+
+# The fuzzer's in-process run of built-in methods (the soak): counts and claims.
+add_executable(fuzzing_test ${CMAKE_CURRENT_LIST_DIR}/tests/fuzzing_test.cpp)
+target_link_libraries(fuzzing_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME fuzzing_test COMMAND fuzzing_test)

@@ -14,23 +14,6 @@
 #include "reports/fuzzing.hpp"
 
 namespace cullcheck::cli {
-namespace {
-
-// "a,b", "all", or "conservative": every point method that claims conservativeness (on the
-// one-building probe scene; a claim does not depend on the scene).
-std::vector<std::string> fuzz_method_names(const std::string& text) {
-  std::vector<std::string> out;
-  if (text == "conservative") {
-    Scene probe;
-    probe.buildings.push_back(box_building(0, -5, -5, 5, 5, 10));
-    for (const std::string& name : method_names())
-      if (make_method(name, probe)->claims_conservative()) out.push_back(name);
-    return out;
-  }
-  return parse_methods(text);
-}
-
-}  // namespace
 
 Runner add_fuzz(CLI::App& app) {
   struct Flags {
@@ -64,7 +47,7 @@ Runner add_fuzz(CLI::App& app) {
   f->sampling.add(*sub);
   return [f] {
     if (f->fuzz.subject.empty() && f->methods.empty()) throw std::invalid_argument("fuzz: give --subject or --method");
-    if (!f->methods.empty()) f->fuzz.methods = fuzz_method_names(f->methods);
+    if (!f->methods.empty()) f->fuzz.methods = f->methods == "conservative" ? conservative_method_names() : parse_methods(f->methods);
     f->fuzz.sampling = f->sampling.sampling;
     f->fuzz.pixels = !f->no_pixels;
     const FuzzResult r = fuzz_subject(f->fuzz);

@@ -40,14 +40,15 @@ Runner add_report(CLI::App& app) {
     int scaling_frames = 1000;
     bool table_41 = false, view_cells = false, vbaoi_section = false, no_pixels = false;
     SubjectFlags subjects;
-    FuzzOptions fuzz;
-    std::string fuzz_out = "cullcheck-counterexample";
+    FuzzOptions fuzz, soak;
+    std::string fuzz_out = "cullcheck-counterexample", soak_out = "cullcheck-soak-counterexample";
     ViewCellOptions view_cell_options;
     std::string view_cell_sampling = "boundary,tiled";
     SceneSource vbaoi_city{"manhattan", 1, R"({"blocks_x":41,"blocks_y":41})", ""};
     VbaoiFlags vbaoi;
   };
   auto f = std::make_shared<Flags>();
+  f->soak.budget = 0;  // off unless asked for
   CLI::App* sub =
       app.add_subcommand("report", "The main job: every method and the oracle along a path, the claims ledger, report.json");
   f->scene.add(*sub);
@@ -62,6 +63,13 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--fuzz-budget", f->fuzz.budget, "Cases the fuzzed subject must pass")->capture_default_str();
   sub->add_option("--fuzz-seed", f->fuzz.seed, "Seed of the fuzzer's cases")->capture_default_str();
   sub->add_option("--fuzz-out", f->fuzz_out, "Folder for the fuzzer's minimal counterexample")->capture_default_str();
+  sub->add_option("--soak-budget", f->soak.budget,
+                  "Also fuzz every built-in conservative method in process for this many cases (like `cullcheck fuzz --method "
+                  "conservative`), into report.json's \"soak\" and the claims ledger; 0: off")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10000000));
+  sub->add_option("--soak-seed", f->soak.seed, "Seed of the soak's cases")->capture_default_str();
+  sub->add_option("--soak-out", f->soak_out, "Folder for the soak's minimal counterexample")->capture_default_str();
   sub->add_option("--region-sweep", f->region_sweep_radii,
                      "Also run every region method along the path at each of these disc radii (m), e.g. "
                      "0.25,0.5,1,1.41,2,4: PVS size, frames each PVS serves and its cost, into report.json's \"region_sweep\"")
@@ -207,6 +215,23 @@ Runner add_report(CLI::App& app) {
       const ClaimCheck claim = fuzz_claim(fuzzed, replay);
       document["claims"].push_back(to_json(claim));
       in.claims.push_back(claim);
+    }
+    if (f->soak.budget > 0) {
+      f->soak.methods = conservative_method_names();
+      f->soak.sampling = f->sampling.sampling;
+      f->soak.pixels = false;
+      const FuzzResult soaked = fuzz_subject(f->soak);
+      document["soak"] = fuzz_json(soaked);
+      std::string replay;
+      if (soaked.failure) {
+        replay = write_counterexample(soaked, f->soak, f->soak_out);
+        document["soak"]["counterexample"] = f->soak_out;
+      }
+      std::cout << fuzz_summary(soaked, f->soak_out);
+      for (ClaimCheck& c : fuzz_claims(soaked, replay)) {
+        document["claims"].push_back(to_json(c));
+        in.claims.push_back(std::move(c));
+      }
     }
     // The gate in the document says what the exit code says: sections' violations count too.
     const GateVerdict verdict = gate_verdict(v, f->scene.source.replay_flags(), {}, section_violations);
