@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -292,6 +293,11 @@ Answers answer(const Scene& scene, const oracle::Oracle& truth, const Camera& ca
 }
 
 struct Case {
+  Case() = default;
+  Case(std::string label_, Vec2 at_, double z_ = kEye, double yaw_ = 0.0, double pitch_ = 0.0, double hfov_ = kPi / 2,
+       double far_ = 1.0e5)
+      : label(std::move(label_)), at(at_), z(z_), yaw(yaw_), pitch(pitch_), hfov(hfov_), far(far_) {}
+
   std::string label;
   Vec2 at;  // in the generated city's coordinates (world = at + kOffset)
   double z = kEye, yaw = 0.0, pitch = 0.0, hfov = kPi / 2;
@@ -322,16 +328,23 @@ std::pair<std::string, std::size_t> check(const City& city, const Case& k, const
   EXPECT_EQ(in_local.position.x + city.local.origin.x, in_world.position.x);
   EXPECT_EQ(in_local.position.y + city.local.origin.y, in_world.position.y);
   const Answers w = answer(city.world, *city.world_truth, in_world), l = answer(city.local, *city.local_truth, in_local);
+  // The failure's replays: this test's case, and the CLI on the rebased scene (the file holds
+  // world coordinates, loading rebases them; the camera is scene-local).
   const std::string where = city.label + " city, " + k.label + ", camera (local) " + camera_text(in_local) +
                             "\n  replay: " + replay + "\n  or: build/apps/cullcheck/cullcheck verify --scene " + city.file +
-                            " --camera '" + camera_text(in_local) + "' --spacing 8 --frustum-resolution 128 --method ";
-  EXPECT_EQ(w.seen.model, l.seen.model) << where << "all";
-  EXPECT_EQ(w.seen.visible, l.seen.visible) << "the oracle's visible set changed with rebasing: " << where << "all";
-  EXPECT_EQ(w.pvs.size(), l.pvs.size()) << where << "all";
+                            " --camera '" + camera_text(in_local) + "' --spacing 8 --frustum-resolution 128";
+  auto with_method = [&](const std::string& name) {
+    if (name.rfind("region:", 0) == 0)
+      return where + " --method frustum --region-method " + name.substr(7) + " --region-radius " + std::to_string(kRegionRadius);
+    return where + " --method " + name;
+  };
+  EXPECT_EQ(w.seen.model, l.seen.model) << where;
+  EXPECT_EQ(w.seen.visible, l.seen.visible) << "the oracle's visible set changed with rebasing: " << where;
+  EXPECT_EQ(w.pvs.size(), l.pvs.size()) << where;
   for (const auto& [name, pvs] : l.pvs) {
     const auto other = w.pvs.find(name);
     if (other == w.pvs.end()) continue;
-    EXPECT_EQ(other->second, pvs) << name << "'s PVS changed with rebasing: " << where << name;
+    EXPECT_EQ(other->second, pvs) << name << "'s PVS changed with rebasing: " << with_method(name);
     for (const auto* frame : {&w, &l}) {
       const auto& held = frame->pvs.at(name);
       for (ObjectId id : frame->seen.visible) {
@@ -340,7 +353,7 @@ std::pair<std::string, std::size_t> check(const City& city, const Case& k, const
         if (frame->seen.sampling && frame->seen.sampling->witnesses.count(id))
           witness = ", witness " + oracle::describe(frame->seen.sampling->witnesses.at(id));
         ADD_FAILURE() << name << " culled building " << id << " which the oracle (" << frame->seen.model << witness << ") sees, "
-                      << (frame == &w ? "un-rebased" : "rebased") << ": " << where << name;
+                      << (frame == &w ? "un-rebased" : "rebased") << ": " << with_method(name);
       }
     }
   }
@@ -419,7 +432,7 @@ TEST(NumericalExtremes, UtmCityAtStreetLevelHeldToTheExactPlanView) {
 TEST(NumericalExtremes, UtmCityHeldToEmbreeAboveRoofsAndAmongVariedHeights) {
   using utm::street_line;
   const std::vector<utm::Case> above{
-      {"inside, above the roofs, looking down", {street_line(11), street_line(11)}, 45.0, 0.7, -0.3},
+      {"inside, above the roofs, looking down", {street_line(11), street_line(11)}, 45.0, 0.7, -0.3, kPi / 2, 2000.0},
       {"beyond the west edge, above the roofs", {-utm::kExtent / 2 - 20, 0.0}, 60.0, 0.0, -0.2, kPi / 2, 3000.0},
   };
   for (const utm::Case& k : above) {
@@ -428,7 +441,7 @@ TEST(NumericalExtremes, UtmCityHeldToEmbreeAboveRoofsAndAmongVariedHeights) {
     EXPECT_GT(seen, 0u) << k.label;
   }
   const std::vector<utm::Case> street{
-      {"west edge street looking north", {street_line(0), street_line(5) + 100}, utm::kEye, kPi / 2},
+      {"west edge street looking north", {street_line(0), street_line(5) + 100}, utm::kEye, kPi / 2, 0.0, kPi / 2, 4000.0},
       {"inside, 360 degrees", {street_line(11), street_line(12)}, utm::kEye, 0.0, 0.0, kTwoPi, 3000.0},
       {"city corner looking in", {street_line(utm::kBlocks), street_line(utm::kBlocks)}, utm::kEye, 5 * kPi / 4, 0.0,
        kPi / 2, 4000.0},
