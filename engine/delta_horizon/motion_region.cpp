@@ -24,8 +24,8 @@ double azimuth_shift(double radius, double distance) {
 }
 
 AzimuthSpan widened(const AzimuthSpan& s, double by) {
-  if (s.end - s.begin + 2 * by >= kTwoPi) return {0.0, kTwoPi};
-  return {s.begin - by, s.end + by};
+  if (s.end - s.begin + 2 * by >= kTwoPi) return {0.0, kTwoPi, s.slack};
+  return {s.begin - by, s.end + by, s.slack};
 }
 
 // One arc where two arcs overlap (either one when they overlap twice), or none.
@@ -34,7 +34,7 @@ std::optional<AzimuthSpan> overlap(const AzimuthSpan& a, const AzimuthSpan& b) {
   if (a.full_circle()) return b;
   for (double shift : {-kTwoPi, 0.0, kTwoPi}) {
     const double lo = std::max(a.begin, b.begin + shift), hi = std::min(a.end, b.end + shift);
-    if (lo < hi) return AzimuthSpan{lo, hi};
+    if (lo < hi) return AzimuthSpan{lo, hi, std::max(a.slack, b.slack)};
   }
   return std::nullopt;
 }
@@ -108,7 +108,7 @@ struct RegionBounds {
     const double rb = length(ring[span.first_tangent] - a2), re = length(ring[span.last_tangent] - a2);
     if (!beyond_reach(rb) || !beyond_reach(re)) return std::nullopt;
     const double shift_b = azimuth_shift(eps, narrow(rb)), shift_e = azimuth_shift(eps, narrow(re));
-    const AzimuthSpan s{span.span.begin + shift_b, span.span.end - shift_e};
+    const AzimuthSpan s{span.span.begin + shift_b, span.span.end - shift_e, span.span.slack};
     if (!(s.end > s.begin) || !(span.span.end - span.span.begin + shift_b + shift_e < kPi - 1e-6)) return std::nullopt;
     return s;
   }
@@ -129,6 +129,7 @@ struct RegionBounds {
     if (!s) return std::nullopt;
     const double rise = prism.height - (a.z + zeta);
     const double slope = rise >= 0.0 ? rise / widen(max_vertex + eps) : rise / (narrow(min_boundary) - widen(eps));
+    if (!std::isfinite(slope)) return std::nullopt;  // degenerate geometry hides nothing
     return std::pair{*s, narrow(slope)};
   }
 
@@ -146,6 +147,21 @@ struct RegionBounds {
     return {g, widen(slope)};
   }
 };
+
+// Distance from the eye to a box: the plain sum of squares (bit-identical to the rest of the
+// engine), rescaled only when a square overflows, so that a box 1e200 m away is not "beyond
+// far" because its distance came out +inf.
+double box_distance(const ViewVolume& volume, const Box3& box) {
+  const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
+  const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
+  const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
+  const double d2 = dx * dx + dy * dy + dz * dz;
+  if (std::isfinite(d2)) return std::sqrt(d2);
+  const double m = std::max({dx, dy, dz});
+  if (!std::isfinite(m)) return m;
+  const double x = dx / m, y = dy / m, z = dz / m;
+  return m * std::sqrt(x * x + y * y + z * z);
+}
 
 double yaw_difference(double a, double b) { return std::abs(std::remainder(a - b, kTwoPi)); }
 
@@ -168,12 +184,7 @@ struct Candidate {
 // camera of the region does not cull the box by its view volume.
 // may_meet: false only when for some plane the whole box stays outside for every camera.
 bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, double turn) {
-  if (volume.omnidirectional) {
-    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
-    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
-    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
-    return widen(std::sqrt(dx * dx + dy * dy + dz * dz) + reach) < volume.far;
-  }
+  if (volume.omnidirectional) return widen(box_distance(volume, box) + reach) < volume.far;
   for (int i = 0; i < volume.plane_count; ++i) {
     const Vec3& n = volume.planes[i].n;
     const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
@@ -185,12 +196,7 @@ bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double tu
   const double far_extent = length(Vec3{std::max(std::abs(box.lo.x - volume.eye.x), std::abs(box.hi.x - volume.eye.x)),
                                         std::max(std::abs(box.lo.y - volume.eye.y), std::abs(box.hi.y - volume.eye.y)),
                                         std::max(std::abs(box.lo.z - volume.eye.z), std::abs(box.hi.z - volume.eye.z))});
-  if (volume.omnidirectional) {
-    const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
-    const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
-    const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
-    return narrow(std::sqrt(dx * dx + dy * dy + dz * dz) - reach) <= volume.far;
-  }
+  if (volume.omnidirectional) return narrow(box_distance(volume, box) - reach) <= volume.far;
   for (int i = 0; i < volume.plane_count; ++i) {
     const Vec3& n = volume.planes[i].n;
     const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};

@@ -133,8 +133,13 @@ inline bool prisms_visible(OcclusionHorizon& horizon, const Building& building, 
   }
   return visible;
 }
+// Whether a shadow computed from geometry may be merged: a NaN or infinite slope (or distance)
+// comes from degenerate input (overflowing coordinates, a zero distance) and must hide nothing.
+inline bool usable_shadow(double farthest, double slope) { return std::isfinite(farthest) && std::isfinite(slope); }
+
 // Queues a visible building's shadows. `distance` is its nearest plan distance; a CVP that may
-// reach in front of the near plane, or that holds the eye (no span), casts none.
+// reach in front of the near plane, or that holds the eye (no span), casts none; nor does one
+// whose shadow is not usable_shadow.
 inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
                           double unclipped, const std::vector<std::optional<ConvexSpan>>& spans) {
   const Vec2 e = plan(eye);
@@ -142,7 +147,8 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
   for (std::size_t p = 0; p < building.prisms.size(); ++p) {
     const ConvexVerticalPrism& prism = building.prisms[p];
     if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-    pending.push(max_vertex_distance(prism.ring, e), spans[p]->span, shadow_slope(rule, prism, eye, *spans[p]));
+    const double farthest = max_vertex_distance(prism.ring, e), slope = shadow_slope(rule, prism, eye, *spans[p]);
+    if (usable_shadow(farthest, slope)) pending.push(farthest, spans[p]->span, slope);
   }
 }
 

@@ -16,6 +16,10 @@ constexpr double kAll = std::numeric_limits<double>::infinity();
 
 bool AzimuthSpan::full_circle() const { return end - begin >= kTwoPi; }
 
+bool AzimuthSpan::valid() const {
+  return std::abs(begin) <= kMaxAzimuth && std::abs(end) <= kMaxAzimuth && begin <= end && slack >= 0.0;
+}
+
 OcclusionHorizon::OcclusionHorizon(std::uint32_t bins) : bins_(bins), bin_width_(kTwoPi / bins) {
   if (bins < 2 || (bins & (bins - 1)) != 0 || bins > (1u << 22))
     throw std::invalid_argument("horizon bins must be a power of two in [2, 2^22], got " + std::to_string(bins));
@@ -42,62 +46,76 @@ void OcclusionHorizon::reset() {
 }
 
 template <class F>
-void OcclusionHorizon::for_each_range(const AzimuthSpan& span, bool inner, F&& f) const {
+bool OcclusionHorizon::for_each_range(const AzimuthSpan& span, bool inner, F&& f) const {
+  if (!span.valid()) return false;
   if (span.full_circle()) {
     f(0u, bins_ - 1);
-    return;
+    return true;
   }
-  // Bin indices on the unrolled line [0, 2 * bins): a span may run past 2π once.
-  long first, last;
+  // Bin indices on the unrolled line [0, 2 * bins): a span may run past 2π once. They are
+  // computed in double and converted only once known to be in range: the ends are finite and
+  // within ±kMaxAzimuth, but the slack may be huge (or +inf).
+  double first, last;
   if (inner) {
-    first = static_cast<long>(std::ceil((span.begin + kAngularSlack) / bin_width_));
-    last = static_cast<long>(std::floor((span.end - kAngularSlack) / bin_width_)) - 1;
+    first = std::ceil((span.begin + span.slack) / bin_width_);
+    last = std::floor((span.end - span.slack) / bin_width_) - 1;
   } else {
-    first = static_cast<long>(std::floor((span.begin - kAngularSlack) / bin_width_));
-    last = static_cast<long>(std::floor((span.end + kAngularSlack) / bin_width_));
+    first = std::floor((span.begin - span.slack) / bin_width_);
+    last = std::floor((span.end + span.slack) / bin_width_);
   }
-  if (first > last) return;
-  const long n = bins_;
-  if (last - first + 1 >= n) {
+  if (!(first <= last)) return false;
+  const double bins = bins_;
+  if (last - first + 1 >= bins) {
     f(0u, bins_ - 1);
-    return;
+    return true;
   }
+  // Now first and last lie within (kMaxAzimuth + 2π) / bin_width + 1 < 2^28 of zero: exact
+  // integers in a double and in an int64.
+  const std::int64_t n = bins_;
+  std::int64_t lo = static_cast<std::int64_t>(first), hi = static_cast<std::int64_t>(last);
   // Move the range so that it starts in [0, n); it then ends before 2n.
-  const long shift = (first >= 0 ? first / n : (first - n + 1) / n) * n;
-  first -= shift;
-  last -= shift;
-  if (last < n) {
-    f(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last));
+  const std::int64_t shift = (lo >= 0 ? lo / n : (lo - n + 1) / n) * n;
+  lo -= shift;
+  hi -= shift;
+  if (hi < n) {
+    f(static_cast<std::uint32_t>(lo), static_cast<std::uint32_t>(hi));
   } else {
-    f(static_cast<std::uint32_t>(first), bins_ - 1);
-    f(0u, static_cast<std::uint32_t>(last - n));
+    f(static_cast<std::uint32_t>(lo), bins_ - 1);
+    f(0u, static_cast<std::uint32_t>(hi - n));
   }
+  return true;
 }
 
 void OcclusionHorizon::restrict_to(const AzimuthSpan& span) {
-  if (span.full_circle()) return;
+  if (!span.valid() || span.full_circle()) return;
   // The complement of the outer-rounded coverage: bins entirely outside the span.
-  const AzimuthSpan outside{std::fmod(span.end, kTwoPi), std::fmod(span.end, kTwoPi) + (kTwoPi - (span.end - span.begin))};
+  const double end = std::fmod(span.end, kTwoPi);
+  const AzimuthSpan outside{end, end + (kTwoPi - (span.end - span.begin)), span.slack};
   for_each_range(outside, /*inner=*/true, [&](std::uint32_t a, std::uint32_t b) { raise_bins(a, b, kAll); });
 }
 
 void OcclusionHorizon::raise(const AzimuthSpan& span, double slope) {
+  if (std::isnan(slope)) return;
   for_each_range(span, /*inner=*/true, [&](std::uint32_t a, std::uint32_t b) { raise_bins(a, b, slope); });
 }
 
+// An empty or invalid rounding reads no bin and so proves nothing: the loosest bound.
 double OcclusionHorizon::min_over(const AzimuthSpan& span) {
   double m = kAll;
-  for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::min(m, min_bins(a, b)); });
-  return m;
+  const bool read = for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::min(m, min_bins(a, b)); });
+  return read ? m : kNone;
 }
 
 double OcclusionHorizon::max_over(const AzimuthSpan& span) {
   double m = kNone;
-  for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::max(m, max_node(1, 0, bins_ - 1, a, b)); });
-  return m;
+  const bool read =
+      for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::max(m, max_node(1, 0, bins_ - 1, a, b)); });
+  return read ? m : kAll;
 }
 
-bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) { return max_slope < min_over(span); }
+bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) {
+  return std::isfinite(max_slope) && max_slope < min_over(span);
+}
 
 double OcclusionHorizon::bin_value(std::uint32_t bin) { return min_bins(bin, bin); }
 
@@ -109,8 +127,10 @@ std::vector<double> OcclusionHorizon::bin_values() {
 
 void OcclusionHorizon::assign(const std::vector<double>& values) {
   if (values.size() != bins_) throw std::invalid_argument("assign: expected " + std::to_string(bins_) + " bin values");
-  std::copy(values.begin(), values.end(), min_.begin() + bins_);
-  std::copy(values.begin(), values.end(), max_.begin() + bins_);
+  // A NaN bin would drop out of every min and max (comparisons with NaN are false); as −inf it
+  // hides nothing.
+  std::transform(values.begin(), values.end(), min_.begin() + bins_, [](double v) { return std::isnan(v) ? kNone : v; });
+  std::copy(min_.begin() + bins_, min_.end(), max_.begin() + bins_);
   std::fill(pending_.begin(), pending_.end(), kNone);
   all_dirty_ = true;
   for (std::uint32_t node = bins_ - 1; node >= 1; --node) {

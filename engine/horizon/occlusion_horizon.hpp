@@ -11,25 +11,56 @@
 //
 // Conservativeness of the discretisation: a shadow raises only bins lying entirely inside its
 // azimuth span (inner rounding); a test reads every bin its span touches (outer rounding). Both
-// roundings widen by kAngularSlack so that atan2's rounding can never flip a boundary bin.
+// roundings widen by the span's `slack` (at least kAngularSlack, more for spans computed from
+// large coordinates close to the eye: angular_slack) so that rounding can never flip a boundary
+// bin.
+//
+// Failing safe: the horizon may hide a thing only on evidence. A span that is not a valid
+// azimuth span (NaN or infinite ends, end before begin, ends beyond ±kMaxAzimuth, NaN slack) or
+// whose rounding touches no bin proves nothing: min_over is then −inf (nothing hidden),
+// max_over +inf (no bound), raise and restrict_to change nothing. hides() never hides a thing
+// whose highest slope is NaN or infinite, and a NaN slope raises nothing. No float is converted
+// to an integer before it is known to be a finite bin index in range.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
+
+#include "core/geometry.hpp"
 
 namespace cullcheck {
 
 // Added to tested spans and removed from shadow spans, in radians: far above atan2's
-// few-ulp error, far below any bin width in use (2π / 2^20 ≈ 6e-6).
+// few-ulp error, far below any bin width in use (2π / 2^20 ≈ 6e-6). The least slack of a span.
 inline constexpr double kAngularSlack = 1e-12;
 
+// Azimuths farther than this from 0 are not produced by any span construction in the engine
+// (their ends lie in [−2π, 4π]); a span reaching beyond is treated as unknown, not reduced.
+inline constexpr double kMaxAzimuth = 16.0 * kPi;
+
+// The slack of an azimuth computed from plan coordinates of magnitude up to `magnitude` (the
+// larger |x|, |y| of the eye and the point) at plan distance `distance` from the eye. Each
+// coordinate is only known to its rounding, about magnitude·ε (ε = 2^−52), and atan2 turns an
+// offset across the line of sight into an angle by dividing by the distance: the azimuth is
+// off by about magnitude·ε / distance. Four times that, plus kAngularSlack for atan2's own
+// error. +inf for a zero distance (such a span reads the whole circle and raises nothing), NaN
+// for NaN input (an invalid span).
+inline double angular_slack(double magnitude, double distance) {
+  return kAngularSlack + 4.0 * std::numeric_limits<double>::epsilon() * magnitude / distance;
+}
+
 // An azimuth interval [begin, end] with begin ∈ [0, 2π) and begin <= end <= begin + 2π; end may
-// exceed 2π when the interval wraps past east.
+// exceed 2π when the interval wraps past east. `slack` bounds the rounding error of both ends.
 struct AzimuthSpan {
   double begin = 0.0;
   double end = 0.0;
+  double slack = kAngularSlack;
   bool full_circle() const;
+  // Finite ends within ±kMaxAzimuth, begin <= end, slack >= 0 (may be +inf).
+  bool valid() const;
 };
 
 class OcclusionHorizon {
@@ -41,16 +72,20 @@ class OcclusionHorizon {
   void reset();
   // Sets the bins lying entirely outside `span` to +inf: directions outside the view volume's
   // azimuth coverage are hidden from the start (6-DoF mapping of the frustum, ch. 3.1.2).
+  // An invalid span restricts nothing.
   void restrict_to(const AzimuthSpan& span);
 
-  // Raises H to at least `slope` over the bins lying entirely inside `span`.
+  // Raises H to at least `slope` over the bins lying entirely inside `span`. +inf is a valid
+  // slope (hides every direction there: upper bounds of a horizon use it); NaN raises nothing.
+  // Callers that compute shadows from geometry pass finite slopes only (a non-finite one comes
+  // from degenerate geometry and must not hide anything).
   void raise(const AzimuthSpan& span, double slope);
   // True when an object whose every point over `span` has slope below `max_slope` is hidden:
-  // max_slope < min H over every bin touched by `span`.
+  // max_slope < min H over every bin touched by `span`. False when max_slope is not finite.
   bool hides(const AzimuthSpan& span, double max_slope);
-  // min H over the bins touched by `span`.
+  // min H over the bins touched by `span`; −inf when the span is invalid or touches no bin.
   double min_over(const AzimuthSpan& span);
-  // max H over the bins touched by `span`.
+  // max H over the bins touched by `span`; +inf when the span is invalid or touches no bin.
   double max_over(const AzimuthSpan& span);
 
   std::uint32_t bins() const { return bins_; }
@@ -59,6 +94,7 @@ class OcclusionHorizon {
   double bin_value(std::uint32_t bin);
   // Every bin's value in order, and the reverse: set every bin and rebuild the tree; both O(bins).
   // (ΔH compares and combines whole horizons bin by bin: the thesis's linked list of pieces.)
+  // assign() takes a NaN value as −inf (nothing hidden there).
   std::vector<double> bin_values();
   void assign(const std::vector<double>& values);
   // Segment-tree nodes visited since construction or the last call to take_node_visits().
@@ -75,8 +111,9 @@ class OcclusionHorizon {
   double max_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first, std::uint32_t last);
   void apply(std::uint32_t node, double slope);
   void push_down(std::uint32_t node);
-  // Calls f(first, last) for the one or two non-wrapping bin ranges of a span.
-  template <class F> void for_each_range(const AzimuthSpan& span, bool inner, F&& f) const;
+  // Calls f(first, last) for the one or two non-wrapping bin ranges of a span; returns whether
+  // it called f at all (false for an invalid span or an empty rounding).
+  template <class F> bool for_each_range(const AzimuthSpan& span, bool inner, F&& f) const;
 
   std::uint32_t bins_;
   double bin_width_;

@@ -1,5 +1,6 @@
 #include "engine/horizon/polar_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/camera.hpp"
@@ -35,7 +36,12 @@ std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 e
   const double width = std::atan2(cross(dlo, dhi), dot(dlo, dhi));
   if (!(width >= 0.0) || width >= kMaxSpan) return std::nullopt;
   const double begin = azimuth_of(dlo);
-  return ConvexSpan{{begin, begin + width}, lo, hi};
+  // Both ends are azimuths of tangent vertices: their rounding grows with the coordinates'
+  // magnitude and shrinks with the vertices' distance (angular_slack).
+  const double magnitude = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(ring[lo].x), std::abs(ring[lo].y),
+                                     std::abs(ring[hi].x), std::abs(ring[hi].y)});
+  const double slack = angular_slack(magnitude, std::min(length(dlo), length(dhi)));
+  return ConvexSpan{{begin, begin + width, slack}, lo, hi};
 }
 
 // Squared distance from p to the segment ab.

@@ -1,6 +1,8 @@
 // Plan-view angular geometry around the eye: azimuth spans, distances and the elevation
-// bounds (as slopes) that the occlusion horizon compares. Double precision; the spans carry
-// the horizon's kAngularSlack when they are rounded to bins.
+// bounds (as slopes) that the occlusion horizon compares. Double precision; a span computed
+// from coordinates carries the rounding bound of its ends (angular_slack: the coordinates'
+// magnitude times ε over the tangent vertices' distance), which the horizon adds when it
+// rounds the span to bins.
 #pragma once
 
 #include <optional>

@@ -20,28 +20,40 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // A micrometre: nothing modelled is that thin.
 constexpr double kMinDepth = 1e-6;
 
-double widened(double v, double direction) { return v + direction * kScreenSlack * (1.0 + std::abs(v)); }
+double widened(double v, double direction, double rounding) {
+  return v + direction * screen_slack(rounding) * (1.0 + std::abs(v));
+}
 
-// The projected extent of a set of points: their screen-x range and highest screen y.
+// A projected point and its coordinate rounding over depth (screen_slack).
+struct ScreenPoint {
+  Vec2 screen;
+  double rounding;
+};
+
+// The projected extent of a set of points: their screen-x range, highest screen y and largest
+// rounding. An empty extent has x_min > x_max, which hides nothing (ViewPlaneHorizon).
 struct ScreenExtent {
-  double x_min = kInfinity, x_max = -kInfinity, y_max = -kInfinity;
-  void add(Vec2 screen) {
-    x_min = std::min(x_min, screen.x);
-    x_max = std::max(x_max, screen.x);
-    y_max = std::max(y_max, screen.y);
+  double x_min = kInfinity, x_max = -kInfinity, y_max = -kInfinity, rounding = 0.0;
+  void add(const ScreenPoint& p) {
+    x_min = std::min(x_min, p.screen.x);
+    x_max = std::max(x_max, p.screen.x);
+    y_max = std::max(y_max, p.screen.y);
+    rounding = std::max(rounding, p.rounding);
   }
 };
+
+double magnitude(Vec3 p) { return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}); }
 
 class ViewPlane {
  public:
   explicit ViewPlane(const Camera& camera) : eye_(camera.position), basis_(basis_of(camera)) {}
 
   // Screen (x, y) of p, or nothing when p is not deeper than min_depth.
-  std::optional<Vec2> project(Vec3 p, double min_depth) const {
+  std::optional<ScreenPoint> project(Vec3 p, double min_depth) const {
     const Vec3 d = p - eye_;
     const double depth = dot(basis_.forward, d);
     if (!(depth > min_depth)) return std::nullopt;
-    return Vec2{dot(basis_.right, d) / depth, dot(basis_.up, d) / depth};
+    return ScreenPoint{{dot(basis_.right, d) / depth, dot(basis_.up, d) / depth}, std::max(eye_magnitude_, magnitude(p)) / depth};
   }
 
   // Extent of a ground-standing box (8 corners): nothing if a corner is not deeper than min_depth.
@@ -73,32 +85,34 @@ class ViewPlane {
   // extreme-x vertices (ties in x: the lower top). Nothing when a corner is shallower than
   // min_depth (the near plane: clipped geometry hides nothing).
   struct Shadow {
-    double x_min, x_max, y;
+    double x_min, x_max, y, rounding;
   };
   std::optional<Shadow> shadow(const ConvexVerticalPrism& prism, double min_depth) const {
-    double x_min = kInfinity, x_max = -kInfinity, y_at_min = kInfinity, y_at_max = kInfinity;
+    double x_min = kInfinity, x_max = -kInfinity, y_at_min = kInfinity, y_at_max = kInfinity, rounding = 0.0;
     for (Vec2 v : prism.ring) {
       const auto bottom = project({v.x, v.y, 0.0}, min_depth), top = project({v.x, v.y, prism.height}, min_depth);
       if (!bottom || !top) return std::nullopt;
+      rounding = std::max({rounding, bottom->rounding, top->rounding});
       // With pitch or roll a vertical edge leans on the screen, and its bottom may be the
       // extreme; the naive port still takes that vertex's top as the height.
-      for (double x : {bottom->x, top->x}) {
-        if (x < x_min || (x == x_min && top->y < y_at_min)) x_min = x, y_at_min = top->y;
-        if (x > x_max || (x == x_max && top->y < y_at_max)) x_max = x, y_at_max = top->y;
+      for (double x : {bottom->screen.x, top->screen.x}) {
+        if (x < x_min || (x == x_min && top->screen.y < y_at_min)) x_min = x, y_at_min = top->screen.y;
+        if (x > x_max || (x == x_max && top->screen.y < y_at_max)) x_max = x, y_at_max = top->screen.y;
       }
     }
-    return Shadow{x_min, x_max, std::min(y_at_min, y_at_max)};
+    return Shadow{x_min, x_max, std::min(y_at_min, y_at_max), rounding};
   }
 
  private:
   Vec3 eye_;
+  double eye_magnitude_ = magnitude(eye_);
   CameraBasis basis_;
 };
 
 // Front-to-back sweep entries, ordered as tuples: (nearest plan distance, is building, index);
 // shadows waiting for the sweep: (farthest plan distance, insertion order, shadow).
 using SweepEntry = std::tuple<double, bool, std::uint32_t>;
-using WaitingShadow = std::tuple<double, std::uint64_t, double, double, double>;
+using WaitingShadow = std::tuple<double, std::uint64_t, double, double, double, double>;
 template <class T>
 using EarliestFirst = std::priority_queue<T, std::vector<T>, std::greater<T>>;
 
@@ -117,6 +131,7 @@ double ViewPlaneHorizon::to_bin_coordinate(double x) const {
 }
 
 std::uint32_t ViewPlaneHorizon::bin_of(double x) const {
+  if (std::isnan(x)) throw std::invalid_argument("oh_is: screen x is NaN, which lies in no bin");
   const double last = horizon_.bins() - 1;
   // The screen is closed: its edges belong to its outermost bins, not to the margins.
   const bool on_screen = std::abs(x) <= half_width_;
@@ -132,14 +147,25 @@ void ViewPlaneHorizon::reset(double half_width) {
   horizon_.restrict_to({1.5 * w, kTwoPi - 1.5 * w});
 }
 
-void ViewPlaneHorizon::raise(double x_min, double x_max, double y) {
-  const double a = widened(x_min, +1.0), b = widened(x_max, -1.0);
-  if (!(a < b)) return;
-  horizon_.raise({to_bin_coordinate(a), to_bin_coordinate(b)}, widened(y, -1.0));
+void ViewPlaneHorizon::raise(double x_min, double x_max, double y, double rounding) {
+  if (!std::isfinite(y) || std::isnan(rounding)) return;
+  const double a = widened(x_min, +1.0, rounding), b = widened(x_max, -1.0, rounding);
+  if (!(a < b)) return;  // also NaN: raise nothing
+  horizon_.raise({to_bin_coordinate(a), to_bin_coordinate(b)}, widened(y, -1.0, rounding));
 }
 
-double ViewPlaneHorizon::min_over(double x_min, double x_max) {
-  return horizon_.min_over({to_bin_coordinate(widened(x_min, -1.0)), to_bin_coordinate(widened(x_max, +1.0))});
+double ViewPlaneHorizon::min_over(double x_min, double x_max, double rounding) {
+  const double a = widened(x_min, -1.0, rounding), b = widened(x_max, +1.0, rounding);
+  // NaN (in a value or the rounding) or an inverted range: nothing is read, nothing proven.
+  if (!(a <= b)) return -kInfinity;
+  return horizon_.min_over({to_bin_coordinate(a), to_bin_coordinate(b)});
+}
+
+// The shadows' heights are lowered by the full slack; the tested height is raised by its own
+// coordinate rounding.
+bool ViewPlaneHorizon::hides(double x_min, double x_max, double y_max, double rounding) {
+  const double y = y_max + (screen_slack(rounding) - kScreenSlack) * (1.0 + std::abs(y_max));
+  return std::isfinite(y) && y < min_over(x_min, x_max, rounding);
 }
 
 // --- ImageSpaceHorizonCulling ------------------------------------------------------------------
@@ -169,7 +195,7 @@ CullResult ImageSpaceHorizonCulling::cull(const Camera& camera) {
   auto hidden = [&](const Box2& plan_box, double top) {
     if (!occlusion) return false;
     const auto extent = view.box(plan_box, top, min_depth);
-    return extent && horizon_.hides(extent->x_min, extent->x_max, extent->y_max);
+    return extent && horizon_.hides(extent->x_min, extent->x_max, extent->y_max, extent->rounding);
   };
 
   EarliestFirst<SweepEntry> sweep;
@@ -184,8 +210,8 @@ CullResult ImageSpaceHorizonCulling::cull(const Camera& camera) {
     sweep.pop();
     // Merge every shadow whose prism lies wholly nearer (in plan) than this entry.
     while (!waiting.empty() && std::get<0>(waiting.top()) < distance) {
-      const auto& [farthest, n, x_min, x_max, y] = waiting.top();
-      horizon_.raise(x_min, x_max, y);
+      const auto& [farthest, n, x_min, x_max, y, rounding] = waiting.top();
+      horizon_.raise(x_min, x_max, y, rounding);
       ++stats.occluders_applied;
       waiting.pop();
     }
@@ -209,14 +235,14 @@ CullResult ImageSpaceHorizonCulling::cull(const Camera& camera) {
     // The box may show; the building is hidden only if every CVP is.
     const bool visible = !occlusion || std::any_of(building.prisms.begin(), building.prisms.end(), [&](const auto& prism) {
                            const auto extent = view.prism(prism, min_depth);
-                           return !extent || !horizon_.hides(extent->x_min, extent->x_max, extent->y_max);
+                           return !extent || !horizon_.hides(extent->x_min, extent->x_max, extent->y_max, extent->rounding);
                          });
     if (!visible) continue;
     result.pvs.push_back(building.id);
     if (!occlusion) continue;
     for (const ConvexVerticalPrism& prism : building.prisms)
       if (const auto s = view.shadow(prism, min_depth))
-        waiting.emplace(max_vertex_distance(prism.ring, e), shadow_order++, s->x_min, s->x_max, s->y);
+        waiting.emplace(max_vertex_distance(prism.ring, e), shadow_order++, s->x_min, s->x_max, s->y, s->rounding);
   }
   std::sort(result.pvs.begin(), result.pvs.end());
   stats.horizon_nodes = horizon_.take_node_visits();

@@ -42,6 +42,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/method.hpp"
@@ -55,6 +56,13 @@ namespace cullcheck {
 // width for ordinary fields of view; for views of a fraction of a degree it can span a few bins,
 // which only costs culling (shadows shrink, tests widen).
 inline constexpr double kScreenSlack = 1e-9;
+// On top of it, the rounding of the coordinates themselves: a point whose coordinates (or the
+// eye's) reach magnitude M is known to about M·ε, which moves its projection by about M·ε /
+// depth (times 1 + |value|). A projected extent carries the largest M / depth of its points
+// (`rounding`, 1/m · m = unitless); the slack is kScreenSlack + 4·ε·rounding, times 1 + |value|.
+inline double screen_slack(double rounding) {
+  return kScreenSlack + 4.0 * std::numeric_limits<double>::epsilon() * rounding;
+}
 
 // H(x), the occlusion horizon over the view plane's x range: the OcclusionHorizon segment tree
 // (min/max per node, lazy raises; ch. 3.1.1, Fig. 3.2) with its bins laid over the screen instead
@@ -62,7 +70,9 @@ inline constexpr double kScreenSlack = 1e-9;
 // of the screen and stay +inf (hidden); the screen [−half_width, +half_width] is spread over
 // bins 1 .. bins−2, and every span is clamped into the margins, so no span ever wraps around.
 // Same rounding as OH(OS): shadows raise only bins wholly inside their (shrunk) range, tests read
-// every bin their (widened) range touches.
+// every bin their (widened) range touches. Fails safe like OH(OS)'s horizon: a NaN screen value,
+// an inverted range or a non-finite height never hides anything and a shadow with one raises
+// nothing. `rounding` is the extent's coordinate rounding (screen_slack).
 class ViewPlaneHorizon {
  public:
   // bins: a power of two >= 4 (std::invalid_argument otherwise).
@@ -71,14 +81,16 @@ class ViewPlaneHorizon {
   // Nothing hidden on the screen |x| <= half_width (> 0), everything hidden beside it.
   void reset(double half_width);
   // Raises H to at least y over the bins wholly inside [x_min, x_max].
-  void raise(double x_min, double x_max, double y);
-  // min H over the bins touched by [x_min, x_max] (+inf when the range lies beside the screen).
-  double min_over(double x_min, double x_max);
+  void raise(double x_min, double x_max, double y, double rounding = 0.0);
+  // min H over the bins touched by [x_min, x_max] (+inf when the range lies beside the screen;
+  // −inf when a value is NaN or the range is inverted).
+  double min_over(double x_min, double x_max, double rounding = 0.0);
   // True when something whose projection lies in [x_min, x_max] below y_max is hidden.
-  bool hides(double x_min, double x_max, double y_max) { return y_max < min_over(x_min, x_max); }
+  bool hides(double x_min, double x_max, double y_max, double rounding = 0.0);
 
   std::uint32_t bins() const { return horizon_.bins(); }
   // The bin holding screen x (0 and bins−1: beside the screen), and its current value.
+  // std::invalid_argument for a NaN x, which lies in no bin.
   std::uint32_t bin_of(double x) const;
   double bin_value(std::uint32_t bin) { return horizon_.bin_value(bin); }
   std::uint64_t take_node_visits() { return horizon_.take_node_visits(); }

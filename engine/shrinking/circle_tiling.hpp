@@ -25,7 +25,9 @@ struct CircleTiling {
   Vec2 centre(std::int64_t i, std::int64_t j) const {
     return {(static_cast<double>(i) + 0.5 * static_cast<double>(j & 1)) * spacing(), static_cast<double>(j) * row_step()};
   }
-  // The centre nearest to p (ties to the lower index), at most ε away.
+  // The centre nearest to p (ties to the lower index), at most ε away. Both functions throw
+  // std::invalid_argument when a lattice index is not finite or beyond 2^53 (a NaN point, or
+  // coordinates too large for ε).
   Vec2 nearest_centre(Vec2 p) const;
   // Every centre whose disc meets the convex counter-clockwise `ring`, row by row in serpentine
   // order (each centre follows a neighbour, so PVS decisions carry between them).

@@ -26,7 +26,8 @@ std::optional<NarrowedSpan> narrowed_span(const ConvexVerticalPrism& prism, Vec2
   const double to_e = length(prism.ring[span.first_tangent] - c);
   const double to_a = length(prism.ring[span.last_tangent] - c);
   if (!(to_e > epsilon) || !(to_a > epsilon)) return std::nullopt;
-  const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a)};
+  const AzimuthSpan shrunk{span.span.begin + std::asin(epsilon / to_e), span.span.end - std::asin(epsilon / to_a),
+                           span.span.slack};
   if (!(shrunk.end > shrunk.begin)) return std::nullopt;
   return NarrowedSpan{shrunk, to_e, to_a};
 }
@@ -106,9 +107,11 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                           if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
                           if (!corrected_) {
                             const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
-                            if (shadow) pending.push(max_vertex_distance(prism.ring, e), shadow->span, shadow->slope);
+                            const double farthest = max_vertex_distance(prism.ring, e);
+                            if (shadow && usable_shadow(farthest, shadow->slope)) pending.push(farthest, shadow->span, shadow->slope);
                           } else if (const auto shadow = corrected_shrunk_shadow(prism, eye, *spans[p], region.radius)) {
-                            pending.push(max_vertex_distance(prism.ring, e) + 2 * region.radius, shadow->span, shadow->slope);
+                            const double farthest = max_vertex_distance(prism.ring, e) + 2 * region.radius;
+                            if (usable_shadow(farthest, shadow->slope)) pending.push(farthest, shadow->span, shadow->slope);
                           }
                         }
                       },

@@ -42,7 +42,8 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
 
 // Queues the shadows of a visible building's occluders shrunk beforehand (the methods that shrink
 // footprints in preprocessing): each shrunk CVP with OH(OS)'s conservative rule from the centre;
-// one that may reach in front of the near plane, or that holds the eye, casts none.
+// one that may reach in front of the near plane, or that holds the eye, casts none (nor one whose
+// shadow is not usable_shadow).
 inline void queue_shrunk_shadows(ShadowQueue& pending, const std::vector<ConvexVerticalPrism>& shrunk, Vec3 eye,
                                  double distance, double unclipped) {
   const Vec2 e = plan(eye);
@@ -50,7 +51,9 @@ inline void queue_shrunk_shadows(ShadowQueue& pending, const std::vector<ConvexV
   for (const ConvexVerticalPrism& prism : shrunk) {
     const auto span = convex_span(prism.ring, e);
     if (!span || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-    pending.push(max_vertex_distance(prism.ring, e), span->span, shadow_slope(ShadowRule::conservative, prism, eye, *span));
+    const double farthest = max_vertex_distance(prism.ring, e);
+    const double slope = shadow_slope(ShadowRule::conservative, prism, eye, *span);
+    if (usable_shadow(farthest, slope)) pending.push(farthest, span->span, slope);
   }
 }
 

@@ -3,11 +3,23 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "engine/shrinking/circle_tiling.hpp"
 
 namespace cullcheck {
+namespace {
+
+// A count as "1.23e+15" (std::to_string of a double prints six decimals; a cast to an integer
+// is undefined when it overflows).
+std::string count_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+}  // namespace
 
 std::string_view cell_sampling_name(CellSampling s) { return s == CellSampling::boundary ? "boundary" : "tiled"; }
 
@@ -21,7 +33,15 @@ std::vector<Vec2> boundary_samples(const std::vector<Vec2>& ring, double epsilon
   std::vector<Vec2> out;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const Vec2 a = ring[i], d = ring[(i + 1) % ring.size()] - a;
-    const auto pieces = static_cast<std::size_t>(std::max(1.0, std::ceil(length(d) / (2.0 * epsilon))));
+    // Checked before the conversion (NaN or beyond size_t is undefined behaviour); std::max
+    // would turn a NaN into 1.
+    double count = std::ceil(length(d) / (2.0 * epsilon));
+    if (count < 1.0) count = 1.0;
+    if (!(count <= static_cast<double>(kMaxSamplesPerEdge)))
+      throw std::invalid_argument("view cell: edge " + std::to_string(i) + " needs " + count_text(count) +
+                                  " samples at ε = " + std::to_string(epsilon) + " m (at most " +
+                                  std::to_string(kMaxSamplesPerEdge) + ")");
+    const auto pieces = static_cast<std::size_t>(count);
     for (std::size_t k = 0; k < pieces; ++k) out.push_back(a + d * (static_cast<double>(k) / static_cast<double>(pieces)));
   }
   return out;
@@ -51,7 +71,7 @@ void check_cell(const ViewCell& cell, double epsilon, CellSampling sampling, std
                               : 0.5 * area / (1.5 * std::sqrt(3.0) * epsilon * epsilon) + perimeter / epsilon;
   if (estimate > static_cast<double>(max_samples))
     throw std::invalid_argument("view cell: ε = " + std::to_string(epsilon) + " m needs about " +
-                                std::to_string(static_cast<long long>(estimate)) + " samples, more than the limit " +
+                                count_text(estimate) + " samples, more than the limit " +
                                 std::to_string(max_samples));
 }
 

@@ -41,7 +41,10 @@ std::string_view cell_sampling_name(CellSampling s);
 // Throws std::invalid_argument naming the accepted values when `name` is neither.
 CellSampling parse_cell_sampling(std::string_view name);
 
-// Points on the boundary at most 2ε apart along it, starting at each corner.
+// Points on the boundary at most 2ε apart along it, starting at each corner. Throws
+// std::invalid_argument when an edge would need more than kMaxSamplesPerEdge (or a NaN count:
+// a NaN vertex or ε).
+inline constexpr std::size_t kMaxSamplesPerEdge = 100'000'000;
 std::vector<Vec2> boundary_samples(const std::vector<Vec2>& ring, double epsilon);
 
 // The sample points of `sampling`, in visiting order. Throws std::invalid_argument when the cell
