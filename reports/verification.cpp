@@ -50,7 +50,11 @@ Violation violation_of(std::size_t frame, ObjectId building, const Camera& camer
   v.building = building;
   v.camera = camera;
   v.replay = std::move(replay);
-  if (!std::binary_search(answer.visible.begin(), answer.visible.end(), building) && pixels) {
+  // The pixel's witness when the ray oracle has none for it, or has one that did not stand.
+  const auto verdict = answer.rechecked.find({building, false});
+  const bool ray_stands = verdict == answer.rechecked.end() || verdict->second.stands();
+  if ((!std::binary_search(answer.visible.begin(), answer.visible.end(), building) || !ray_stands) && pixels &&
+      pixels->witnesses.count(building)) {
     v.model = "pixel_ids";
     v.witness = oracle::describe(pixels->witnesses.at(building));
     return v;
@@ -68,15 +72,15 @@ Violation violation_of(std::size_t frame, ObjectId building, const Camera& camer
 void drop_unconfirmed(const oracle::Oracle& truth, oracle::OracleAnswer& answer, const Camera& camera,
                       const oracle::PixelComparison* pixels, std::vector<ObjectId>& missed, oracle::WitnessRecheckCounts& counts) {
   std::erase_if(missed, [&](ObjectId id) {
-    bool stands = true;
-    if (std::binary_search(answer.visible.begin(), answer.visible.end(), id)) {
-      if (!answer.sampling) return false;
-      stands = truth.confirm_witness(answer, id, camera).stands();
-    } else if (pixels && pixels->witnesses.count(id)) {
-      stands = truth.recheck_witness(answer, id, pixels->witnesses.at(id), camera).stands();
-    } else {
-      return false;
-    }
+    const bool sampled = std::binary_search(answer.visible.begin(), answer.visible.end(), id);
+    if (sampled && !answer.sampling) return false;
+    const oracle::WitnessRay* pixel = nullptr;
+    if (pixels)
+      if (const auto found = pixels->witnesses.find(id); found != pixels->witnesses.end()) pixel = &found->second;
+    if (!sampled && !pixel) return false;
+    // The ray oracle's witnesses first; the pixel's when those do not stand (or there are none).
+    bool stands = sampled && truth.confirm_witness(answer, id, camera).stands();
+    if (!stands && pixel) stands = truth.recheck_witness(answer, id, *pixel, camera).stands();
     ++counts.checked;
     counts.dropped += stands ? 0 : 1;
     return !stands;
