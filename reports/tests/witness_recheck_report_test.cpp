@@ -21,15 +21,15 @@ class CullsEverything : public CullingMethod {
   std::string name_;
 };
 
-struct Run {
+struct RecheckRun {
   Scene scene;
   CameraPath path;
   PathVerification verification;
 };
 
 // Two buildings in front of a level street-level camera, two frames, two methods that cull both.
-Run run(bool allow_exact_2d) {
-  Run r;
+RecheckRun run(bool allow_exact_2d) {
+  RecheckRun r;
   r.scene.buildings = {box_building(1, 20, -12, 24, -2, 30), box_building(2, 20, 2, 24, 12, 30)};
   Camera c;
   c.position = {0, 0, 1.7};
@@ -52,7 +52,7 @@ Run run(bool allow_exact_2d) {
 }
 
 TEST(WitnessRecheckReport, EveryViolationsWitnessIsCheckedOnceAndCountedPerMethod) {
-  const Run r = run(/*allow_exact_2d=*/false);
+  const RecheckRun r = run(/*allow_exact_2d=*/false);
   ASSERT_EQ(r.verification.runs.size(), 2u);
   for (const MethodRun& m : r.verification.runs) {
     EXPECT_EQ(m.violation_count, 4u) << m.method;  // two buildings, two frames
@@ -77,7 +77,7 @@ TEST(WitnessRecheckReport, EveryViolationsWitnessIsCheckedOnceAndCountedPerMetho
 }
 
 TEST(WitnessRecheckReport, ExactPlanViewViolationsHaveNoRayToRecheck) {
-  const Run r = run(/*allow_exact_2d=*/true);
+  const RecheckRun r = run(/*allow_exact_2d=*/true);
   ASSERT_EQ(r.verification.oracle.frames_exact_2d, 2u);
   for (const MethodRun& m : r.verification.runs) {
     EXPECT_EQ(m.violation_count, 4u) << m.method;
