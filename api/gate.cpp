@@ -31,10 +31,13 @@ struct Gate::Impl {
     FrameVerdict v;
     oracle::OracleOptions oo;
     oo.sampling = options.sampling;
-    const oracle::OracleAnswer answer = truth->visible_set(camera, oo);
+    oracle::OracleAnswer answer = truth->visible_set(camera, oo);
     v.oracle_model = answer.model;
     v.witnessed = answer.visible.size();
     std::set_difference(answer.visible.begin(), answer.visible.end(), visible.begin(), visible.end(), std::back_inserter(v.missed));
+    // A witness counts only if it stands re-cast in double precision (Embree casts in floats).
+    if (answer.sampling)
+      std::erase_if(v.missed, [&](ObjectId id) { return !truth->confirm_witness(answer, id, camera).stands(); });
     std::string witnesses;
     for (ObjectId id : v.missed)
       if (answer.sampling && answer.sampling->witnesses.count(id))
@@ -45,10 +48,12 @@ struct Gate::Impl {
       v.largest_blob = pixels.largest_blob;
       for (const auto& [id, ray] : pixels.witnesses) {
         if (std::binary_search(v.missed.begin(), v.missed.end(), id)) continue;
+        if (!truth->recheck_witness(answer, id, ray, camera).stands()) continue;
         v.missed.insert(std::upper_bound(v.missed.begin(), v.missed.end(), id), id);
         witnesses += "\n  object " + std::to_string(id) + ": " + oracle::describe(ray);
       }
     }
+    v.witness_recheck = answer.witness_recheck;
     v.replay = "cullcheck gate " + options.scene_flags + " --camera " + camera_arg(camera) + " --visible " + shell_quote(ids_text(visible)) +
                (budget ? " --claims approximate --pixel-budget " + std::to_string(*budget) : "");
     if (budget) {

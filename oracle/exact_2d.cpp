@@ -28,6 +28,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "oracle/view_transform.hpp"
 
 namespace cullcheck::oracle {
 namespace {
@@ -56,9 +57,11 @@ struct Wedge {
 Wedge wedge_of(const Camera& camera) {
   Wedge w;
   if (camera.omnidirectional()) return w;
-  const ViewVolume volume(camera);
+  const ViewTransform view(camera);
   w.everything = false;
-  for (int i = 0; i < 2; ++i) w.normals[i] = {volume.planes[i].n.x, volume.planes[i].n.y};
+  // The left and right planes (w + x >= 0, w - x >= 0) pass through the eye; for a level camera
+  // their normals are horizontal.
+  for (int i = 0; i < 2; ++i) w.normals[i] = {view.planes()[i].n.x, view.planes()[i].n.y};
   const double a = camera.yaw - camera.hfov / 2;
   w.right_edge = {std::cos(a), std::sin(a)};
   return w;
@@ -248,15 +251,7 @@ const ExactFootprint* footprint_holding(const std::vector<ExactFootprint>& footp
 bool level(const Camera& c) { return c.omnidirectional() || (c.pitch == 0.0 && c.roll == 0.0); }
 
 // Whether a box may meet the view cone (the side planes only; near and far ignored).
-bool may_meet_cone(const ViewVolume& v, const Box3& box) {
-  if (v.omnidirectional) return true;
-  for (int i = 0; i < 4; ++i) {
-    const Vec3& n = v.planes[i].n;
-    const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};
-    if (dot(n, corner - v.eye) < 0.0) return false;
-  }
-  return true;
-}
+bool may_meet_cone(const ViewTransform& v, const Box3& box) { return v.omnidirectional() || v.may_meet(box, /*depth=*/false); }
 
 std::string name(const Building& b) { return "building " + std::to_string(b.id); }
 
@@ -277,8 +272,8 @@ Exact2dApplicability check_exact_2d(const Scene& scene, const Camera& camera) {
   const std::vector<ExactFootprint> footprints = exact_footprints(scene);
   if (const ExactFootprint* f = footprint_holding(footprints, plan(camera.position)))
     return {false, "the eye lies inside or on building " + std::to_string(f->id)};
-  const ViewVolume volume(camera);
-  const Vec3 forward = basis_of(camera).forward;
+  const ViewTransform volume(camera);
+  const Vec3 forward = volume.forward();
   const Vec2 eye = plan(camera.position);
   double tallest = 0.0;
   for (const Building& b : scene.buildings)

@@ -1,6 +1,10 @@
 #include "oracle/mesh.hpp"
 
 #include <cmath>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "oracle/roof_triangulation.hpp"
 
 namespace cullcheck::oracle {
 
@@ -34,10 +38,14 @@ TriangleMesh triangulate(const Scene& scene) {
       add_triangle(p0, q0, q1, i);
       add_triangle(p0, q1, p1, i);
     }
-    for (const ConvexVerticalPrism& prism : b.prisms) {
-      const auto& r = prism.ring;
-      for (std::size_t k = 1; k + 1 < r.size(); ++k)
-        add_triangle({r[0].x, r[0].y, b.height}, {r[k].x, r[k].y, b.height}, {r[k + 1].x, r[k + 1].y, b.height}, i);
+    try {
+      mesh.roofs.push_back(triangulate_roof(b.footprint));
+    } catch (const std::invalid_argument& e) {
+      throw InputError("building " + std::to_string(b.id), "footprint", e.what());
+    }
+    for (const auto& t : mesh.roofs.back()) {
+      const Vec2 p = b.footprint[t[0]], q = b.footprint[t[1]], r = b.footprint[t[2]];
+      add_triangle({p.x, p.y, b.height}, {q.x, q.y, b.height}, {r.x, r.y, b.height}, i);
     }
   }
   for (std::size_t k = 0; k < scene.meshes.size(); ++k) {

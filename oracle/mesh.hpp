@@ -2,9 +2,10 @@
 //
 // The scene's OBJECTS are its buildings followed by its mesh objects: object index k < building
 // count is Scene::buildings[k], any other is Scene::meshes[k - building count]. Each building
-// contributes its walls (two triangles per footprint edge, z = 0 to height) and its roof (each
-// convex vertical prism's ring fanned from its first vertex: the prisms partition the footprint
-// with diagonals only, so the roof has exactly footprint.size() - 2 triangles). No floor: nothing
+// contributes its walls (two triangles per footprint edge, z = 0 to height) and its roof: the
+// oracle's own triangulation of the footprint (roof_triangulation.hpp, a CGAL constrained
+// triangulation; not core's convex prisms, which the engine uses), exactly footprint.size() - 2
+// triangles, after the walls. No floor: nothing
 // is seen from below the ground plane. Each mesh object contributes its triangles as they are
 // (two-sided: Embree's triangles are hit from either side). Triangle i belongs to object
 // owner_index[i], whose stable id is owner_id[i] (= object_ids[owner_index[i]]).
@@ -30,8 +31,11 @@ struct TriangleMesh {
   std::vector<ObjectId> owner_id;          // primID -> the object's id
   std::vector<ObjectId> object_ids;        // object index -> id
   std::size_t building_count = 0;          // objects [0, building_count) are buildings
+  // Per building: its roof triangles as indices into its footprint (roof_triangulation.hpp).
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> roofs;
 };
 
+// Throws InputError naming the building when its footprint cannot be triangulated (not simple).
 TriangleMesh triangulate(const Scene& scene);
 
 }  // namespace cullcheck::oracle

@@ -1,6 +1,8 @@
 #include "oracle/oracle.hpp"
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 namespace cullcheck::oracle {
 
@@ -30,6 +32,36 @@ OracleAnswer Oracle::visible_set(const Camera& camera, const OracleOptions& opti
   answer.why = applicability.reason;
   answer.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return answer;
+}
+
+const WitnessRecheck& Oracle::recheck_witness(OracleAnswer& answer, ObjectId object, const WitnessRay& ray,
+                                              const Camera& camera) const {
+  const auto key = std::make_pair(object, ray.source == RaySource::pixel);
+  if (const auto found = answer.rechecked.find(key); found != answer.rechecked.end()) return found->second;
+  const WitnessRecheck verdict = triangles_.recheck(ray, object, camera);
+  ++answer.witness_recheck.checked;
+  answer.witness_recheck.dropped += verdict.stands() ? 0 : 1;
+  return answer.rechecked.emplace(key, verdict).first->second;
+}
+
+const WitnessRecheck& Oracle::confirm_witness(OracleAnswer& answer, ObjectId object, const Camera& camera) const {
+  const auto key = std::make_pair(object, false);
+  if (const auto found = answer.rechecked.find(key); found != answer.rechecked.end()) return found->second;
+  if (!answer.sampling || !answer.sampling->witnesses.count(object))
+    throw std::logic_error("Oracle::confirm_witness: the answer has no ray-sampling witness of object " + std::to_string(object));
+  OracleResult& sampling = *answer.sampling;
+  WitnessRecheck verdict = triangles_.recheck(sampling.witnesses.at(object), object, camera);
+  if (!verdict.stands())
+    if (const auto further = sampling.further_witnesses.find(object); further != sampling.further_witnesses.end())
+      for (const WitnessRay& ray : further->second)
+        if (const WitnessRecheck v = triangles_.recheck(ray, object, camera); v.stands()) {
+          sampling.witnesses.at(object) = ray;
+          verdict = v;
+          break;
+        }
+  ++answer.witness_recheck.checked;
+  answer.witness_recheck.dropped += verdict.stands() ? 0 : 1;
+  return answer.rechecked.emplace(key, verdict).first->second;
 }
 
 }  // namespace cullcheck::oracle

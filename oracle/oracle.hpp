@@ -9,8 +9,12 @@
 //    witness ray.
 // Pixel truth (pixels()): the id buffers of the full scene and of a PVS at the camera's
 // resolution, and the misdrawn pixels between them (pixel_oracle.hpp), on the same Embree scene.
+// Witness re-check (recheck_witness): before a ray or pixel witness makes a violation, it is
+// re-cast in double precision against the oracle's triangles (witness_recheck.hpp); a witness
+// that does not stand there is dropped, and the answer counts both.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -20,6 +24,7 @@
 #include "oracle/exact_2d.hpp"
 #include "oracle/pixel_oracle.hpp"
 #include "oracle/ray_oracle.hpp"
+#include "oracle/witness_recheck.hpp"
 
 namespace cullcheck::oracle {
 
@@ -39,6 +44,11 @@ struct OracleAnswer {
   std::optional<Exact2dResult> exact_2d;  // set when model == exact_2d
   std::optional<OracleResult> sampling;   // set when model == ray_sampling_3d
   double elapsed_seconds = 0.0;
+  // Witnesses re-checked in double precision for this answer (Oracle::recheck_witness) and how
+  // many were dropped; the verdicts by (object, whether the witness is a pixel's), so that each
+  // is re-cast once however many methods culled the object.
+  WitnessRecheckCounts witness_recheck;
+  std::map<std::pair<ObjectId, bool>, WitnessRecheck> rechecked;
 };
 
 class Oracle {
@@ -51,14 +61,29 @@ class Oracle {
   // With `log`, the rays of a ray-sampling query are appended to it (see RayOracle::witness).
   OracleAnswer visible_set(const Camera& camera, const OracleOptions& options = {}, RayLog* log = nullptr) const;
 
+  // Whether the ray-sampling witness of `object` (answer.sampling->witnesses) stands when re-cast
+  // in double precision for `camera`. When the first witness does not, its further witnesses are
+  // tried in ray order and the first that stands replaces it in answer.sampling->witnesses (so a
+  // violation's replay prints a ray that holds). Re-checked once per object and answer: the
+  // verdict is kept in answer.rechecked and counted in answer.witness_recheck (one witness
+  // checked; dropped when none of its rays stands). Throws std::logic_error if the answer has no
+  // ray-sampling witness of `object`.
+  const WitnessRecheck& confirm_witness(OracleAnswer& answer, ObjectId object, const Camera& camera) const;
+  // The same for one given witness ray of `object` (e.g. a pixel oracle's witness, kept apart from
+  // the ray-sampling ones by its RaySource::pixel).
+  const WitnessRecheck& recheck_witness(OracleAnswer& answer, ObjectId object, const WitnessRay& ray,
+                                        const Camera& camera) const;
+
   const RayOracle& rays() const { return rays_; }
   const PixelOracle& pixels() const { return pixels_; }
   const ExactVisibility2d& exact_2d() const;
+  const DoublePrecisionScene& exact_triangles() const { return triangles_; }
 
  private:
   const Scene& scene_;
   RayOracle rays_;
   PixelOracle pixels_{rays_};  // after rays_, whose Embree scene it shares
+  DoublePrecisionScene triangles_{rays_.mesh()};  // the same triangles, in double precision
   mutable std::once_flag exact_once_;
   mutable std::unique_ptr<ExactVisibility2d> exact_;
 };

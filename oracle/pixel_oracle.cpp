@@ -7,17 +7,18 @@
 #include <thread>
 
 #include "oracle/embree_scene.hpp"
+#include "oracle/view_transform.hpp"
 
 namespace cullcheck::oracle {
 namespace {
 
-// The camera's pixel rays (the header's conventions), with what every pixel shares computed once.
+// The camera's pixel rays (the header's conventions) in the oracle's own view transform.
 class PixelRays {
  public:
-  explicit PixelRays(const Camera& c)
-      : camera_(c), basis_(basis_of(c)), resolution_(resolution_of(c)), tan_h_(std::tan(c.hfov / 2)), tan_v_(std::tan(c.vfov / 2)) {}
+  explicit PixelRays(const Camera& c) : camera_(c), view_(c), resolution_(resolution_of(c)) {}
 
   Resolution resolution() const { return resolution_; }
+  const ViewTransform& view() const { return view_; }
 
   WitnessRay ray(int i, int j) const {
     const double u = 2.0 * (i + 0.5) / resolution_.width - 1.0;
@@ -26,8 +27,9 @@ class PixelRays {
     r.source = RaySource::pixel;
     r.origin = camera_.position;
     if (camera_.orthographic()) {
-      r.origin = camera_.position + basis_.right * (u * camera_.ortho_width / 2) + basis_.up * (v * camera_.ortho_height / 2);
-      r.direction = basis_.forward;
+      // On the eye plane: the near-plane point of (u, v) moved back by near.
+      r.origin = view_.near_point_at(u, v) - view_.forward() * camera_.near;
+      r.direction = view_.forward();
       r.t_near = camera_.near, r.t_far = camera_.far;
     } else if (camera_.omnidirectional()) {
       const double azimuth = kTwoPi * (i + 0.5) / resolution_.width;
@@ -35,8 +37,8 @@ class PixelRays {
       r.direction = {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
       r.t_near = 0.0, r.t_far = camera_.far;
     } else {
-      r.direction = normalized(basis_.forward + basis_.right * (u * tan_h_) + basis_.up * (v * tan_v_));
-      const double along = dot(basis_.forward, r.direction);
+      r.direction = view_.direction_through(u, v);
+      const double along = dot(view_.forward(), r.direction);
       r.t_near = camera_.near / along, r.t_far = camera_.far / along;
     }
     r.target = r.origin + r.direction * r.t_far;
@@ -45,9 +47,8 @@ class PixelRays {
 
  private:
   const Camera& camera_;
-  CameraBasis basis_;
+  ViewTransform view_;
   Resolution resolution_;
-  double tan_h_, tan_v_;
 };
 
 // Runs body(k) for k in [0, count) on `threads` threads, in blocks taken from a shared counter.
@@ -185,7 +186,7 @@ PixelComparison PixelOracle::compare(const IdImage& full, const Camera& camera, 
 
   // Witnesses: the first pixel of each culled object, in row-major order, whose ray (re-cast:
   // an IdImage keeps no triangles) hits that object inside the view volume in double precision.
-  const ViewVolume volume(camera);
+  const ViewTransform& volume = rays.view();
   for (std::size_t p : misdrawn) {
     const ObjectId id = full.ids[p];
     if (out.witnesses.count(id)) continue;

@@ -6,9 +6,11 @@
 // Pixels. Pixel (i, j): i is the column counted from the left, j the row counted from the top;
 // ids are stored row-major, ids[j * width + i]; the resolution is resolution_of(camera). With
 // u = 2 (i + 0.5) / width - 1 and v = 1 - 2 (j + 0.5) / height (both in (-1, 1), u to the right,
-// v up) and core's basis_of (forward, right, up after pitch and roll), the ray of pixel (i, j):
+// v up) and the oracle's own view transform (view_transform.hpp: forward, right, up after pitch
+// and roll, derived from the camera's raw fields), the ray of pixel (i, j):
 //  - perspective: from the eye through forward + right * u tan(hfov / 2) + up * v tan(vfov / 2)
-//    (the image plane at distance 1 along forward), normalised; t from near / along to
+//    (the image plane at distance 1 along forward: ViewTransform::direction_through(u, v)),
+//    normalised; t from near / along to
 //    far / along, where along = the direction's component along forward, so the ray covers the
 //    depths near..far along forward exactly;
 //  - orthographic: from eye + right * u ortho_width / 2 + up * v ortho_height / 2 along forward,
@@ -16,7 +18,7 @@
 //  - omnidirectional: an equirectangular panorama, direction (cos e cos a, cos e sin a, sin e)
 //    with azimuth a = 2 pi (i + 0.5) / width (from +x counter-clockwise) and elevation
 //    e = pi / 2 - pi (j + 0.5) / height; t from 0 to far (the view volume is the ball of radius
-//    far; near does not apply, as in ViewVolume).
+//    far; near does not apply).
 // A pixel shows the object of the ray's first hit in that extent: hits before the near plane
 // are clipped (they hide nothing), and a pixel with no hit shows the background, kNoObject.
 //

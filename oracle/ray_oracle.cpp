@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "oracle/embree_scene.hpp"
 #include "oracle/ray_plan.hpp"
+#include "oracle/view_transform.hpp"
 
 namespace cullcheck::oracle {
 namespace {
@@ -42,8 +43,8 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   const TriangleMesh& mesh = im.embree.mesh();
   OracleResult result;
   result.density = options;
-  RayPlan plan(im.scene, camera, options);
-  const ViewVolume& volume = plan.cone().volume();
+  RayPlan plan(im.scene, mesh, camera, options);
+  const ViewTransform& volume = plan.cone().transform();
   auto embree_ray_of = [&](const PlannedRay& r) { return to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far); };
 
   // Chunk by chunk, in plan order: cast the chunk (each thread takes blocks and writes hits at
@@ -52,6 +53,7 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   constexpr std::size_t kChunk = std::size_t(1) << 16, kBlock = 4096;
   std::vector<PlannedRay> chunk;
   std::vector<EmbreeHit> hits;
+  std::vector<std::uint8_t> witness_rays(mesh.object_ids.size(), 0);  // per object index, found so far
   chunk.reserve(kChunk + options.max_samples_per_building);
   while (chunk.clear(), plan.next(chunk, kChunk)) {
     hits.assign(chunk.size(), EmbreeHit{});
@@ -70,16 +72,19 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
 
     for (std::size_t k = 0; k < chunk.size(); ++k) {
       if (!hits[k].hit()) continue;
-      const ObjectId id = mesh.owner_id[hits[k].triangle];
-      if (result.witnesses.count(id)) continue;
+      const std::uint32_t owner = mesh.owner_index[hits[k].triangle];
+      if (witness_rays[owner] > kFurtherWitnesses) continue;  // the first and its further ones found
       const PlannedRay& r = chunk[k];
       const double t = im.embree.exact_t(r.origin, r.direction, hits[k]);
       const Vec3 hit_point = r.origin + r.direction * t;
       if (!volume.contains(hit_point)) continue;
-      result.witnesses.emplace(id, WitnessRay{r.origin, r.direction, r.t_near, r.t_far, t, hit_point, r.target,
-                                              hits[k].triangle,
-                                              r.aimed_at == kNoObjectIndex ? ObjectId(0) : mesh.object_ids[r.aimed_at],
-                                              r.source});
+      const WitnessRay w{r.origin,         r.direction, r.t_near, r.t_far, t, hit_point, r.target, hits[k].triangle,
+                         r.aimed_at == kNoObjectIndex ? ObjectId(0) : mesh.object_ids[r.aimed_at], r.source};
+      const ObjectId id = mesh.object_ids[owner];
+      if (witness_rays[owner]++ == 0)
+        result.witnesses.emplace(id, w);
+      else
+        result.further_witnesses[id].push_back(w);
     }
     result.rays_cast += chunk.size();
     if (log)
@@ -87,6 +92,7 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   }
   result.candidates = plan.candidates();
   result.capped_objects = plan.capped_objects();
+  result.grazing_rays = plan.grazing_rays();
   for (const auto& [id, ray] : result.witnesses) result.witnessed.push_back(id);
   result.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
@@ -99,7 +105,7 @@ RayOracle::Replay RayOracle::replay(const WitnessRay& ray, const Camera& camera)
   if (!hit.hit()) return out;
   out.hit = embree.mesh().owner_id[hit.triangle];
   out.t_hit = embree.exact_t(ray.origin, ray.direction, hit);
-  out.in_view_volume = ViewVolume(camera).contains(ray.origin + ray.direction * out.t_hit);
+  out.in_view_volume = ViewTransform(camera).contains(ray.origin + ray.direction * out.t_hit);
   return out;
 }
 
@@ -176,6 +182,7 @@ const char* source_name(RaySource s) {
     case RaySource::surface_sample: return "surface-sample";
     case RaySource::stratified: return "stratified";
     case RaySource::pixel: return "pixel";
+    case RaySource::grazing: return "grazing";
   }
   return "?";
 }
@@ -196,6 +203,7 @@ void to_json(nlohmann::json& j, const WitnessRay& r) {
   auto v = [](Vec3 p) { return nlohmann::json::array({p.x, p.y, p.z}); };
   j = {{"source", r.source == RaySource::stratified ? "stratified"
                   : r.source == RaySource::pixel    ? "pixel"
+                  : r.source == RaySource::grazing  ? "grazing"
                                                     : "surface_sample"},
        {"origin", v(r.origin)},
        {"direction", v(r.direction)},
@@ -205,7 +213,7 @@ void to_json(nlohmann::json& j, const WitnessRay& r) {
        {"hit_point", v(r.hit_point)},
        {"target", v(r.target)},
        {"triangle", r.triangle}};
-  if (r.source == RaySource::surface_sample) j["aimed_at"] = r.aimed_at;
+  if (r.source == RaySource::surface_sample || r.source == RaySource::grazing) j["aimed_at"] = r.aimed_at;
 }
 
 }  // namespace cullcheck::oracle

@@ -3,17 +3,19 @@
 //
 // Rays are cast toward sample points on every candidate object's surface (buildings and mesh
 // objects whose boxes may meet the view volume: vertices, edge points, a grid on each face, and
-// edge/corner points inset into the faces) and over the whole view volume (a seeded jittered
-// grid). From the eye for perspective and omnidirectional cameras; for an orthographic camera
+// edge/corner points inset into the faces), just beside every candidate building's silhouette
+// edges (grazing rays, ray_plan.hpp) and over the whole view volume (a seeded jittered grid). From the eye for perspective and omnidirectional cameras; for an orthographic camera
 // the rays are parallel to the view direction and each starts on the near plane in front of its
 // target (ray_plan.hpp). An object is WITNESSED VISIBLE when some ray's first hit lies on it and
-// inside the view volume (ViewVolume::contains, tested on the hit point recomputed in double
-// precision on the hit triangle's plane). Rays start at the near plane (geometry nearer than it
+// inside the view volume (the oracle's own ViewTransform::contains, view_transform.hpp, tested
+// on the hit point recomputed in double precision on the hit triangle's plane). Rays start at the near plane (geometry nearer than it
 // is clipped, so it hides nothing) and end at the far plane, or just beyond their sample point.
 //
 // Exactness: every witness is one concrete ray, kept so it can be replayed; it is exact up to
 // Embree's single-precision intersection (about 1e-7 of the scene's extent), which matters only
-// for rays that graze an edge. Densifying the samples converges on the true set from below.
+// for rays that graze an edge: before a witness makes a violation it is re-cast in double
+// precision (witness_recheck.hpp, Oracle::recheck_witness). Densifying the samples converges on
+// the true set from below.
 #pragma once
 
 #include <cstdint>
@@ -38,6 +40,7 @@ enum class RaySource : std::uint8_t {
   surface_sample,  // aimed at a sample point on a candidate object
   stratified,      // one jittered ray per cell of the image-plane (or sphere) grid
   pixel,           // a primary ray through a pixel centre (pixel_oracle.hpp)
+  grazing,         // just beside a candidate building's silhouette edge (ray_plan.hpp)
 };
 
 // One ray that proves an object visible; enough to replay and print it.
@@ -50,7 +53,7 @@ struct WitnessRay {
   Vec3 hit_point;                    // origin + t_hit * direction, inside the view volume
   Vec3 target;                       // sample point aimed at, or origin + t_far * direction
   std::uint32_t triangle = 0;        // Embree primID in the oracle's mesh
-  ObjectId aimed_at = 0;             // for surface samples: the object the sample lies on
+  ObjectId aimed_at = 0;             // surface samples and grazing rays: the object aimed at
   RaySource source = RaySource::surface_sample;
 
   friend bool operator==(const WitnessRay&, const WitnessRay&) = default;
@@ -58,10 +61,16 @@ struct WitnessRay {
 std::string describe(const WitnessRay& ray);  // one line, for failure messages
 void to_json(nlohmann::json& j, const WitnessRay& ray);
 
+inline constexpr std::size_t kFurtherWitnesses = 3;
+
 struct OracleResult {
   std::vector<ObjectId> witnessed;          // sorted ids
   std::map<ObjectId, WitnessRay> witnesses;  // the first witnessing ray of each, in ray order
+  // The next kFurtherWitnesses witnessing rays of each object, in ray order: tried in turn when
+  // the first does not stand the double-precision re-check (Oracle::confirm_witness).
+  std::map<ObjectId, std::vector<WitnessRay>> further_witnesses;
   std::uint64_t rays_cast = 0;
+  std::uint64_t grazing_rays = 0;           // of rays_cast: silhouette-grazing rays
   std::size_t candidates = 0;               // objects whose box may meet the view volume
   std::size_t capped_objects = 0;           // candidates whose samples hit the per-object cap
   double elapsed_seconds = 0.0;             // wall time of the whole query

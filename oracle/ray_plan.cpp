@@ -14,56 +14,54 @@ namespace {
 constexpr double kBeyondRelative = 1e-5;
 constexpr double kBeyondAbsolute = 1e-5;
 
+// The graze distance's floor relative to a point's distance from the mesh origin: 1e-6 is about
+// 16 float ulps (2^-24 ~ 6e-8), so Embree sees the ray on the intended side of the edge.
+constexpr double kGrazeFloorRelative = 1e-6;
+
+// Which way a face looks, as the eye sees it: +1 toward the eye, -1 away, 0 edge-on.
+int facing(double toward_eye) { return toward_eye > 0.0 ? 1 : toward_eye < 0.0 ? -1 : 0; }
+bool silhouette(int a, int b) { return a == 0 || b == 0 || a != b; }
+
 }  // namespace
 
 ViewCone::ViewCone(const Camera& c)
-    : volume_(c), basis_(basis_of(c)), eye_(c.position), near_(c.near), far_(c.far), orthographic_(c.orthographic()) {
-  if (orthographic_) half_width_ = c.ortho_width / 2, half_height_ = c.ortho_height / 2;
-}
+    : transform_(c), forward_(transform_.forward()), near_(c.near), far_(c.far), orthographic_(c.orthographic()) {}
 
 bool ViewCone::extent(Vec3 d, double& t_near, double& t_far) const {
   if (orthographic_) {
-    if (!(d == basis_.forward)) return false;
+    if (!(d == forward_)) return false;
     t_near = 0.0, t_far = far_ - near_;
     return true;
   }
-  if (volume_.omnidirectional) {
-    t_near = 0.0, t_far = far_;
-    return true;
-  }
-  for (int i = 0; i < 4; ++i)  // the side planes pass through the eye: a test on directions
-    if (dot(volume_.planes[i].n, d) < 0.0) return false;
-  const double along = dot(basis_.forward, d);
-  if (!(along > 0.0)) return false;
-  t_near = near_ / along, t_far = far_ / along;
-  return true;
+  return transform_.extent(d, t_near, t_far);
 }
 
-bool ViewCone::ray_toward(Vec3 p, PlannedRay& out) const {
+bool ViewCone::ray_toward(Vec3 p, PlannedRay& out, bool to_far) const {
   if (orthographic_) {
-    const Vec3 to = p - eye_;
-    if (std::abs(dot(to, basis_.right)) > half_width_ || std::abs(dot(to, basis_.up)) > half_height_) return false;
-    const double depth = dot(to, basis_.forward) - near_;  // from the near plane
-    if (!(depth >= 0.0)) return false;                      // before the near plane: clipped
-    out.origin = p - basis_.forward * depth;
-    out.direction = basis_.forward;
+    const Clip c = transform_.clip(p);  // w = 1: x and y are the view box's normalised coordinates
+    if (std::abs(c.x) > 1.0 || std::abs(c.y) > 1.0) return false;
+    const double depth = c.z - near_;  // from the near plane
+    if (!(depth >= 0.0)) return false;  // before the near plane: clipped
+    out.origin = p - forward_ * depth;
+    out.direction = forward_;
     out.t_near = 0.0;
-    out.t_far = std::min(far_ - near_, depth * (1.0 + kBeyondRelative) + kBeyondAbsolute);
+    out.t_far = far_ - near_;
+    if (!to_far) out.t_far = std::min(out.t_far, depth * (1.0 + kBeyondRelative) + kBeyondAbsolute);
   } else {
-    const Vec3 to = p - eye_;
+    const Vec3 to = p - transform_.eye();
     const double distance = length(to);
     if (!(distance > 0.0)) return false;
-    out.origin = eye_;
+    out.origin = transform_.eye();
     out.direction = to * (1.0 / distance);
     if (!extent(out.direction, out.t_near, out.t_far)) return false;
-    out.t_far = std::min(out.t_far, distance * (1.0 + kBeyondRelative) + kBeyondAbsolute);
+    if (!to_far) out.t_far = std::min(out.t_far, distance * (1.0 + kBeyondRelative) + kBeyondAbsolute);
   }
   out.target = p;
   return out.t_far > out.t_near;
 }
 
-RayPlan::RayPlan(const Scene& scene, const Camera& camera, const SamplingOptions& options)
-    : scene_(scene), camera_(camera), options_(options), cone_(camera), basis_(basis_of(camera)), rng_(options.seed) {
+RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options)
+    : scene_(scene), mesh_(mesh), camera_(camera), options_(options), cone_(camera), rng_(options.seed) {
   const int n = options.frustum_resolution;
   if (n <= 0) return;
   if (camera.omnidirectional()) {
@@ -81,9 +79,9 @@ RayPlan::RayPlan(const Scene& scene, const Camera& camera, const SamplingOptions
 void RayPlan::plan_object(std::uint32_t index, std::vector<PlannedRay>& out) {
   const bool building = index < scene_.buildings.size();
   const Box3& bounds = building ? scene_.buildings[index].bounds : scene_.meshes[index - scene_.buildings.size()].bounds;
-  if (!cone_.volume().may_intersect(bounds)) return;
+  if (!cone_.transform().may_meet(bounds)) return;
   ++candidates_;
-  const SurfaceSamples samples = building ? surface_samples(scene_.buildings[index], options_)
+  const SurfaceSamples samples = building ? surface_samples(scene_.buildings[index], mesh_.roofs[index], options_)
                                           : surface_samples(scene_.meshes[index - scene_.buildings.size()], options_);
   capped_ += samples.capped ? 1 : 0;
   PlannedRay ray{};
@@ -91,33 +89,79 @@ void RayPlan::plan_object(std::uint32_t index, std::vector<PlannedRay>& out) {
   ray.source = RaySource::surface_sample;
   for (Vec3 p : samples.points)
     if (cone_.ray_toward(p, ray)) out.push_back(ray);
+  if (building && options_.graze_offset > 0.0) plan_grazing(index, out);
+}
+
+void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
+  const Building& b = scene_.buildings[index];
+  const ViewTransform& view = cone_.transform();
+  const bool ortho = view.orthographic();
+  const Vec3 eye = view.eye(), forward = view.forward();
+  const double ortho_size = ortho ? std::max(camera_.ortho_width, camera_.ortho_height) : 0.0;
+  const std::vector<Vec2>& ring = b.footprint;
+  const std::size_t n = ring.size();
+  // Facing of wall k (footprint edge k -> k+1, counter-clockwise, so its outward normal is the
+  // edge turned clockwise) and of the roof, from the eye (or against the view direction).
+  std::vector<int> wall(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 a = ring[k], e = ring[(k + 1) % n] - a;
+    const Vec2 outward{e.y, -e.x};
+    wall[k] = facing(ortho ? -dot(outward, plan(forward)) : dot(outward, plan(eye) - a));
+  }
+  const int roof = facing(ortho ? -forward.z : eye.z - b.height);
+
+  PlannedRay ray{};
+  ray.aimed_at = index;
+  ray.source = RaySource::grazing;
+  auto graze_along = [&](Vec3 p0, Vec3 p1) {
+    const Vec3 edge = p1 - p0;
+    const double len = length(edge);
+    if (!(len > 0.0)) return;
+    const double steps = std::ceil(len / options_.spacing_m);
+    const std::size_t m = std::max<std::size_t>(std::size_t(options_.edge_samples), steps > 1e6 ? std::size_t(1e6) : std::size_t(steps));
+    for (std::size_t i = 0; i <= m; ++i) {
+      const Vec3 p = p0 + edge * (double(i) / double(m));
+      const Vec3 view_dir = ortho ? forward : p - eye;
+      const Vec3 side = cross(view_dir, edge);
+      const double side_len = length(side);
+      if (!(side_len > 1e-12 * length(view_dir) * len)) continue;  // the edge seen end-on: no sliver
+      const double reach = ortho ? ortho_size : length(view_dir);
+      const double offset = std::max(options_.graze_offset * reach, kGrazeFloorRelative * length(p - mesh_.origin));
+      for (double sign : {-1.0, 1.0})
+        if (cone_.ray_toward(p + side * (sign * offset / side_len), ray, /*to_far=*/true)) {
+          out.push_back(ray);
+          ++grazing_;
+        }
+    }
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 v = ring[k], next = ring[(k + 1) % n];
+    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along({v.x, v.y, 0.0}, {v.x, v.y, b.height});
+    if (silhouette(wall[k], roof)) graze_along({v.x, v.y, b.height}, {next.x, next.y, b.height});
+  }
 }
 
 void RayPlan::plan_cell(std::vector<PlannedRay>& out) {
   const int i = int(cell_ % std::size_t(columns_)), j = int(cell_ / std::size_t(columns_));
   ++cell_;
   const double r1 = rng_.unit(), r2 = rng_.unit();
+  const ViewTransform& view = cone_.transform();
   PlannedRay ray{};
   ray.origin = camera_.position;
   ray.aimed_at = kNoObjectIndex;
   ray.source = RaySource::stratified;
+  // Cell (i, j) of the grid over normalised device coordinates [-1, 1]^2, jittered.
+  const double u = -1.0 + (i + r1) * 2.0 / columns_, v = -1.0 + (j + r2) * 2.0 / rows_;
   if (camera_.orthographic()) {
-    // The rectangle [-W/2, W/2] x [-H/2, H/2] on the near plane, one parallel ray per cell.
-    const double u = -camera_.ortho_width / 2 + (i + r1) * camera_.ortho_width / columns_;
-    const double v = -camera_.ortho_height / 2 + (j + r2) * camera_.ortho_height / rows_;
-    ray.origin = camera_.position + basis_.right * u + basis_.up * v + basis_.forward * camera_.near;
-    ray.direction = basis_.forward;
+    ray.origin = view.near_point_at(u, v);  // one parallel ray per cell of the view box
+    ray.direction = view.forward();
   } else if (camera_.omnidirectional()) {
     const double azimuth = (i + r1) * kTwoPi / columns_;
     const double z = -1.0 + (j + r2) * 2.0 / rows_;
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
     ray.direction = {r * std::cos(azimuth), r * std::sin(azimuth), z};
   } else {
-    // The image plane at distance 1: [-U, U] x [-V, V] maps exactly onto the four side planes.
-    const double U = std::tan(camera_.hfov / 2), V = std::tan(camera_.vfov / 2);
-    const double u = -U + (i + r1) * 2 * U / columns_;
-    const double v = -V + (j + r2) * 2 * V / rows_;
-    ray.direction = normalized(basis_.forward + basis_.right * u + basis_.up * v);
+    ray.direction = view.direction_through(u, v);
   }
   if (cone_.extent(ray.direction, ray.t_near, ray.t_far) && ray.t_far > ray.t_near) {
     ray.target = ray.origin + ray.direction * ray.t_far;

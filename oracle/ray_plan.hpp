@@ -1,10 +1,23 @@
 // The ray oracle's sampling plan: which rays to cast, in a fixed order (design: "Oracle").
 //
-// Order: candidate objects (buildings, then mesh objects, whose boxes may meet the view volume)
-// in scene order, each with its surface samples in order (surface_samples.hpp); then the
-// stratified grid over the view volume row by row, jittered by a SplitMix64 stream seeded with
-// options.seed. The plan is produced in chunks so that a query over millions of rays needs
-// memory for one chunk only.
+// Order: candidate objects (buildings, then mesh objects) in scene order, each with its surface
+// samples in order (surface_samples.hpp) and, for a building, its silhouette-grazing rays; then
+// the stratified grid over the view volume row by row, jittered by a SplitMix64 stream seeded
+// with options.seed. The plan is produced in chunks so that a query over millions of rays needs
+// memory for one chunk only. Everything here is in the oracle's own view transform
+// (view_transform.hpp), nothing in core's.
+//
+// Candidates: the objects whose box may meet the view volume by ViewTransform::may_meet, a
+// conservative test in clip space (a box is dropped only when all of it lies outside one plane).
+//
+// Silhouette-grazing rays (the slivers beside an occluder's outline, where rounding bugs live):
+// a building's vertical edge is on its silhouette when the two walls meeting there do not both
+// face the eye or both face away, a roof edge when its wall and the roof do not (an edge seen
+// exactly edge-on counts). Along each silhouette edge, at max(edge_samples, length / spacing)
+// intervals (ends included), two rays pass the edge point p on either side, aimed at p moved by
+// the graze distance (sampling.hpp) along the direction perpendicular to both the ray and the
+// edge, and run on to the far plane: one just misses the occluder and witnesses what lies behind
+// it, the other just hits it.
 //
 // Where rays start: a perspective or omnidirectional camera's rays start at the eye. An
 // orthographic camera's rays are parallel to its view direction: the ray aimed at a sample point
@@ -19,9 +32,11 @@
 
 #include "core/camera.hpp"
 #include "core/scene.hpp"
+#include "oracle/mesh.hpp"
 #include "oracle/ray_oracle.hpp"
 #include "oracle/sampling.hpp"
 #include "oracle/splitmix64.hpp"
+#include "oracle/view_transform.hpp"
 
 namespace cullcheck::oracle {
 
@@ -41,7 +56,7 @@ struct PlannedRay {
 class ViewCone {
  public:
   explicit ViewCone(const Camera& camera);
-  const ViewVolume& volume() const { return volume_; }
+  const ViewTransform& transform() const { return transform_; }
   // Perspective and omnidirectional cameras: false when no point along the unit direction `d`
   // from the eye lies in the view volume; otherwise the extent: from the near plane (geometry
   // before it is clipped, so it hides nothing) to far. Omnidirectional: [0, far].
@@ -49,42 +64,45 @@ class ViewCone {
   // origin on the near plane; `d` must be forward() (anything else gives false).
   bool extent(Vec3 d, double& t_near, double& t_far) const;
   // The ray toward sample point `p`, or false when it cannot meet p inside the view volume.
-  bool ray_toward(Vec3 p, PlannedRay& out) const;
-  Vec3 forward() const { return basis_.forward; }
+  // It ends just beyond p, or with `to_far`, at the far plane.
+  bool ray_toward(Vec3 p, PlannedRay& out, bool to_far = false) const;
+  Vec3 forward() const { return forward_; }
 
  private:
-  ViewVolume volume_;
-  CameraBasis basis_;
-  Vec3 eye_;
+  ViewTransform transform_;
+  Vec3 forward_;
   double near_, far_;
   bool orthographic_;
-  double half_width_ = 0.0, half_height_ = 0.0;  // orthographic rectangle
 };
 
 class RayPlan {
  public:
-  RayPlan(const Scene& scene, const Camera& camera, const SamplingOptions& options);
+  // `mesh` is triangulate(scene): the plan samples the oracle's own roofs.
+  RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options);
   // Appends the next rays of the plan to `out` until it holds at least `count` rays or the plan
   // is exhausted; returns false once nothing was left to append.
   bool next(std::vector<PlannedRay>& out, std::size_t count);
   std::size_t candidates() const { return candidates_; }
   std::size_t capped_objects() const { return capped_; }
+  std::uint64_t grazing_rays() const { return grazing_; }
   const ViewCone& cone() const { return cone_; }
 
  private:
   void plan_object(std::uint32_t index, std::vector<PlannedRay>& out);
+  void plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out);
   void plan_cell(std::vector<PlannedRay>& out);
 
   const Scene& scene_;
+  const TriangleMesh& mesh_;
   const Camera& camera_;
   const SamplingOptions& options_;
   ViewCone cone_;
-  CameraBasis basis_;
   std::uint32_t object_ = 0;  // next object to consider (buildings, then meshes)
   std::size_t cell_ = 0;      // next stratified cell, row-major
   int columns_ = 0, rows_ = 0;
   SplitMix64 rng_;
   std::size_t candidates_ = 0, capped_ = 0;
+  std::uint64_t grazing_ = 0;
 };
 
 }  // namespace cullcheck::oracle

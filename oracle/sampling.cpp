@@ -13,6 +13,7 @@ void validate(const SamplingOptions& o) {
   if (o.face_grid < 1) throw InputError(object, "face_grid", "must be >= 1");
   if (o.edge_samples < 1) throw InputError(object, "edge_samples", "must be >= 1");
   if (!(o.inset >= 0 && o.inset < 0.5)) throw InputError(object, "inset", "must lie in [0, 0.5)");
+  if (!(o.graze_offset >= 0 && o.graze_offset <= 0.1)) throw InputError(object, "graze_offset", "must lie in [0, 0.1]");
   if (o.max_samples_per_building < 1) throw InputError(object, "max_samples_per_building", "must be >= 1");
   if (o.frustum_resolution < 0 || o.frustum_resolution > 65536)
     throw InputError(object, "frustum_resolution", "must lie in [0, 65536]");
@@ -25,6 +26,7 @@ void to_json(nlohmann::json& j, const SamplingOptions& o) {
        {"edge_samples", o.edge_samples},
        {"inset", o.inset},
        {"max_samples_per_building", o.max_samples_per_building},
+       {"graze_offset", o.graze_offset},
        {"frustum_resolution", o.frustum_resolution},
        {"seed", o.seed},
        {"threads", o.threads}};
@@ -37,6 +39,7 @@ void from_json(const nlohmann::json& j, SamplingOptions& o) {
   o.edge_samples = j.value("edge_samples", d.edge_samples);
   o.inset = j.value("inset", d.inset);
   o.max_samples_per_building = j.value("max_samples_per_building", d.max_samples_per_building);
+  o.graze_offset = j.value("graze_offset", d.graze_offset);
   o.frustum_resolution = j.value("frustum_resolution", d.frustum_resolution);
   o.seed = j.value("seed", d.seed);
   o.threads = j.value("threads", d.threads);

@@ -25,6 +25,13 @@ struct SamplingOptions {
   // When an object (a building or a mesh object) would get more samples than this, its spacing
   // is widened until it fits (surface_samples.hpp says when it cannot).
   std::size_t max_samples_per_building = 4096;
+  // Silhouette-grazing rays (ray_plan.hpp): along every silhouette edge of every candidate
+  // building (its vertical edges and roof edges where a face toward the eye meets one away from
+  // it), at the edge-sample spacing, one ray just beside the edge on each side, passing it at
+  // graze_offset times the distance from the eye (radians; for an orthographic camera, times the
+  // larger side of its view box), and at least 1e-6 of the point's distance from the mesh origin
+  // (16 float ulps, so that Embree's answer is not decided by rounding). 0 disables them.
+  double graze_offset = 1e-5;
   // Stratified rays over the view volume: a jittered grid of `frustum_resolution` columns over
   // the image plane (rows in proportion to the aspect ratio, at most 4N); an orthographic
   // camera's grid covers its ortho_width x ortho_height rectangle the same way (parallel rays

@@ -79,11 +79,18 @@ void roof_samples(const std::vector<Vec2>& ring, double height, const SamplingOp
   }
 }
 
-std::vector<Vec3> samples_at(const Building& b, const SamplingOptions& o, double spacing) {
+// A building with the oracle's roof triangles (mesh.hpp), the roof pieces sampled.
+struct RoofedBuilding {
+  const Building& building;
+  const RoofTriangles& roof;
+};
+
+std::vector<Vec3> samples_at(const RoofedBuilding& r, const SamplingOptions& o, double spacing) {
   std::vector<Vec3> out;
+  const Building& b = r.building;
   const std::size_t n = b.footprint.size();
   for (std::size_t k = 0; k < n; ++k) wall_samples(b.footprint[k], b.footprint[(k + 1) % n], b.height, o, spacing, out);
-  for (const ConvexVerticalPrism& prism : b.prisms) roof_samples(prism.ring, b.height, o, spacing, out);
+  for (const auto& t : r.roof) roof_samples({b.footprint[t[0]], b.footprint[t[1]], b.footprint[t[2]]}, b.height, o, spacing, out);
   return out;
 }
 
@@ -143,8 +150,8 @@ SurfaceSamples surface_samples(const MeshObject& mesh, const SamplingOptions& op
   return capped_samples(mesh, options, std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z}));
 }
 
-SurfaceSamples surface_samples(const Building& building, const SamplingOptions& options) {
-  return capped_samples(building, options,
+SurfaceSamples surface_samples(const Building& building, const RoofTriangles& roof, const SamplingOptions& options) {
+  return capped_samples(RoofedBuilding{building, roof}, options,
                         std::max({building.bounds.hi.x - building.bounds.lo.x,
                                   building.bounds.hi.y - building.bounds.lo.y, building.height}));
 }

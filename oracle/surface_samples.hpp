@@ -5,9 +5,9 @@
 // Walls are parametrised by (s, t) in [0, 1]^2 (s along the footprint edge, t up the wall);
 // each axis is sampled at {0, inset, 1/n, ..., (n-1)/n, 1 - inset, 1}, so the grid holds the
 // vertices (top and bottom corners), points on every edge, a grid on the face, and copies of
-// the edge and corner points moved into the face by `inset`. Roof pieces (the building's convex
-// prisms at the roof height) get a grid of interior points plus points along their boundary,
-// each also moved toward the piece's centroid by `inset`.
+// the edge and corner points moved into the face by `inset`. Roof pieces (the oracle's roof
+// triangles, roof_triangulation.hpp, at the roof height) get a grid of interior points plus
+// points along their boundary, each also moved toward the piece's centroid by `inset`.
 //
 // Mesh objects, per triangle (a, b, c): points along each edge (its start vertex included) at
 // max(face_grid, edge_samples, ceil(length / spacing)) intervals, the longest edge's count for
@@ -23,6 +23,8 @@
 // give the same samples.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -36,7 +38,10 @@ struct SurfaceSamples {
   bool capped = false;     // true when the per-object cap widened the spacing
 };
 
-SurfaceSamples surface_samples(const Building& building, const SamplingOptions& options);
+// A building's roof triangles as indices into its footprint (TriangleMesh::roofs).
+using RoofTriangles = std::vector<std::array<std::uint32_t, 3>>;
+
+SurfaceSamples surface_samples(const Building& building, const RoofTriangles& roof, const SamplingOptions& options);
 SurfaceSamples surface_samples(const MeshObject& mesh, const SamplingOptions& options);
 
 }  // namespace cullcheck::oracle

@@ -117,7 +117,9 @@ nlohmann::json build_report(const ReportInputs& in) {
                       {"rays_cast", o.rays_cast},
                       {"seconds", o.seconds},
                       {"rays_per_second", ratio(static_cast<double>(o.rays_cast), o.sampling_seconds)},
-                      {"bare_embree_rays_per_second", o.bare_embree_rays_per_second}};
+                      {"bare_embree_rays_per_second", o.bare_embree_rays_per_second},
+                      {"grazing_rays", o.grazing_rays},
+                      {"witness_recheck", {{"checked", o.witness_recheck.checked}, {"dropped", o.witness_recheck.dropped}}}};
   json runs = json::array();
   for (const MethodRun& r : v.runs) {
     const double frames = static_cast<double>(r.cull_ms.size());
@@ -151,7 +153,8 @@ nlohmann::json build_report(const ReportInputs& in) {
                      r.compared_with_reference ? nlohmann::json(r.frames_differing_from_reference) : nlohmann::json(nullptr)},
                     {"violations", r.violation_count},
                     {"frames_with_violations", r.frames_with_violations},
-                    {"violation_replays", violations}});
+                    {"violation_replays", violations},
+                    {"witness_recheck", {{"checked", r.witness_recheck.checked}, {"dropped", r.witness_recheck.dropped}}}});
     json& run = runs.back();
     run["outside"] = r.outside;
     run["frames_skipped"] = r.frames_skipped;
@@ -226,7 +229,8 @@ nlohmann::json build_report(const ReportInputs& in) {
                        {"witnessed_mean", mean(r.witnessed_size)},
                        {"violations", r.violation_count},
                        {"frames_with_violations", r.frames_with_violations},
-                       {"violation_replays", violations}});
+                       {"violation_replays", violations},
+                       {"witness_recheck", {{"checked", r.witness_recheck.checked}, {"dropped", r.witness_recheck.dropped}}}});
   }
   report["regions"] = regions;
   json claims = json::array();

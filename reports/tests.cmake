@@ -13,3 +13,8 @@ add_test(NAME gate_verdict_test COMMAND gate_verdict_test)
 add_executable(fuzzing_test ${CMAKE_CURRENT_LIST_DIR}/tests/fuzzing_test.cpp)
 target_link_libraries(fuzzing_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
 add_test(NAME fuzzing_test COMMAND fuzzing_test)
+
+# Violations pass the oracle's double-precision witness re-check; report.json counts it.
+add_executable(witness_recheck_report_test ${CMAKE_CURRENT_LIST_DIR}/tests/witness_recheck_report_test.cpp)
+target_link_libraries(witness_recheck_report_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME witness_recheck_report_test COMMAND witness_recheck_report_test)

@@ -50,7 +50,11 @@ Violation violation_of(std::size_t frame, ObjectId building, const Camera& camer
   v.building = building;
   v.camera = camera;
   v.replay = std::move(replay);
-  if (!std::binary_search(answer.visible.begin(), answer.visible.end(), building) && pixels) {
+  // The pixel's witness when the ray oracle has none for it, or has one that did not stand.
+  const auto verdict = answer.rechecked.find({building, false});
+  const bool ray_stands = verdict == answer.rechecked.end() || verdict->second.stands();
+  if ((!std::binary_search(answer.visible.begin(), answer.visible.end(), building) || !ray_stands) && pixels &&
+      pixels->witnesses.count(building)) {
     v.model = "pixel_ids";
     v.witness = oracle::describe(pixels->witnesses.at(building));
     return v;
@@ -58,6 +62,29 @@ Violation violation_of(std::size_t frame, ObjectId building, const Camera& camer
   v.model = answer.model;
   if (answer.sampling) v.witness = oracle::describe(answer.sampling->witnesses.at(building));
   return v;
+}
+
+// A missed object counts only when its witness ray stands re-cast in double precision (the
+// oracle casts in single precision: oracle/witness_recheck.hpp): the ray oracle's witness when
+// it saw the object (or a further witness of it that stands), else the pixel oracle's. The
+// others are dropped here, and both are counted for the method. The exact 2D model has no ray
+// to doubt.
+void drop_unconfirmed(const oracle::Oracle& truth, oracle::OracleAnswer& answer, const Camera& camera,
+                      const oracle::PixelComparison* pixels, std::vector<ObjectId>& missed, oracle::WitnessRecheckCounts& counts) {
+  std::erase_if(missed, [&](ObjectId id) {
+    const bool sampled = std::binary_search(answer.visible.begin(), answer.visible.end(), id);
+    if (sampled && !answer.sampling) return false;
+    const oracle::WitnessRay* pixel = nullptr;
+    if (pixels)
+      if (const auto found = pixels->witnesses.find(id); found != pixels->witnesses.end()) pixel = &found->second;
+    if (!sampled && !pixel) return false;
+    // The ray oracle's witnesses first; the pixel's when those do not stand (or there are none).
+    bool stands = sampled && truth.confirm_witness(answer, id, camera).stands();
+    if (!stands && pixel) stands = truth.recheck_witness(answer, id, *pixel, camera).stands();
+    ++counts.checked;
+    counts.dropped += stands ? 0 : 1;
+    return !stands;
+  });
 }
 
 // Violations of one method over a set of checked frames: all counted, the first few kept.
@@ -223,12 +250,13 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       }
     if (frame % out.oracle.oracle_stride != 0) continue;
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
-    const oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
+    oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
     ++out.oracle.frames_checked;
     out.oracle.seconds += answer.elapsed_seconds;
     if (answer.sampling) {
       ++out.oracle.frames_ray_sampling;
       out.oracle.rays_cast += answer.sampling->rays_cast;
+      out.oracle.grazing_rays += answer.sampling->grazing_rays;
       out.oracle.sampling_seconds += answer.sampling->elapsed_seconds;
     } else {
       ++out.oracle.frames_exact_2d;
@@ -287,6 +315,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
           if (!std::binary_search(answer.visible.begin(), answer.visible.end(), id)) missed.push_back(id);
         std::sort(missed.begin(), missed.end());
       }
+      drop_unconfirmed(truth, answer, camera, pixel ? &*pixel : nullptr, missed, run.witness_recheck);
       if (missed.empty()) continue;
       for (ViolationTally* tally : {&all_frames[m], claimed ? &claimed_frames[m] : nullptr}) {
         if (tally == nullptr) continue;
@@ -298,12 +327,13 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         }
       }
     }
-    if (camera.orthographic()) continue;
-    for (std::size_t m = 0; m < region_engines.size(); ++m) {
+    // A disc of eyes needs an eye point: no region runs for an orthographic camera.
+    for (std::size_t m = 0; !camera.orthographic() && m < region_engines.size(); ++m) {
       RegionRun& run = out.regions[m];
       run.checked_pvs_size.push_back(static_cast<double>(region_pvs[m].size()));
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
-      const std::vector<ObjectId> missed = missing_from(answer.visible, region_pvs[m]);
+      std::vector<ObjectId> missed = missing_from(answer.visible, region_pvs[m]);
+      drop_unconfirmed(truth, answer, camera, nullptr, missed, run.witness_recheck);
       if (missed.empty()) continue;
       run.violation_count += missed.size();
       ++run.frames_with_violations;
@@ -313,6 +343,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
             index, id, camera, answer, region_replay_command(source, run.method, current[m]->camera, run.radius, run.turn, camera)));
       }
     }
+    out.oracle.witness_recheck += answer.witness_recheck;
   }
   for (std::size_t m = 0; m < n; ++m) {
     MethodRun& run = out.runs[m];

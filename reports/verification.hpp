@@ -95,6 +95,9 @@ struct MethodRun {
   std::uint64_t violation_count = 0;
   std::size_t frames_with_violations = 0;
   std::vector<Violation> violations;    // the first max_replays
+  // Witnesses of objects this method culled, re-cast in double precision before they count as
+  // violations (oracle/witness_recheck.hpp), over every checked frame; dropped ones do not count.
+  oracle::WitnessRecheckCounts witness_recheck;
   bool compared_with_reference = false;
   std::size_t frames_differing_from_reference = 0;  // frames whose PVS differs from the reference's
   // Frames the method could not answer (CullingMethod::unsupported_camera), with the first reason.
@@ -128,6 +131,7 @@ struct RegionRun {
   std::uint64_t violation_count = 0;
   std::size_t frames_with_violations = 0;
   std::vector<Violation> violations;
+  oracle::WitnessRecheckCounts witness_recheck;  // as MethodRun's
 };
 
 struct OracleSummary {
@@ -140,6 +144,8 @@ struct OracleSummary {
   double bare_embree_rays_per_second = 0.0;  // the same rays in a bare Embree loop, same run
   oracle::SamplingOptions density;
   std::size_t oracle_stride = 1;
+  std::uint64_t grazing_rays = 0;              // of rays_cast: silhouette-grazing rays
+  oracle::WitnessRecheckCounts witness_recheck;  // distinct witnesses re-cast, over all frames
 };
 
 struct PixelSummary {

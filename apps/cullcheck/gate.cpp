@@ -99,6 +99,12 @@ Runner add_gate(CLI::App& app) {
       for (const Violation& x : r.over_budget)
         std::cout << "over budget: " << r.method << " at frame " << x.frame << ": " << x.witness << "\n  replay: " << x.replay << "\n";
     }
+    // Violations count only after their witness ray stands re-cast in double precision.
+    std::cout << "witness re-check (double precision): " << v.oracle.witness_recheck.checked << " checked, "
+              << v.oracle.witness_recheck.dropped << " dropped\n";
+    for (const MethodRun& r : v.runs)
+      if (r.witness_recheck.checked > 0)
+        std::cout << "  " << r.method << ": " << r.witness_recheck.checked << " checked, " << r.witness_recheck.dropped << " dropped\n";
     std::cout << "gate: " << (verdict.passed() ? "passed" : "FAILED") << "; wrote " << f->output << "\n";
     if (v.aborted) std::cerr << "cullcheck: " << v.aborted->message << "\n";
     return verdict.exit_code();

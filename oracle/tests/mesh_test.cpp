@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "oracle/roof_triangulation.hpp"
 #include "oracle/surface_samples.hpp"
 #include "test_scenes.hpp"
 
@@ -27,7 +28,7 @@ TEST(Mesh, RectangleHasTwoTrianglesPerWallAndTwoOnTheRoof) {
 }
 
 TEST(Mesh, NonConvexRoofIsCoveredExactlyOnceAndWallsFaceOutward) {
-  // An L-shaped footprint: the roof comes from its convex prisms, fanned.
+  // An L-shaped footprint: the roof is the oracle's own triangulation of it.
   const Building l = polygon_building(3, {{0, 0}, {20, 0}, {20, 8}, {8, 8}, {8, 20}, {0, 20}}, 15);
   const Scene scene = scene_of({box_building(1, 40, 0, 50, 10, 5), l});
   const TriangleMesh mesh = triangulate(scene);
@@ -141,7 +142,7 @@ TEST(SurfaceSamples, HoldCornersEdgesInsetPointsAndRespectTheCap) {
   const Building b = box_building(1, 0, 0, 10, 10, 10);
   SamplingOptions o;
   o.spacing_m = 2.5;
-  const SurfaceSamples s = surface_samples(b, o);
+  const SurfaceSamples s = surface_samples(b, triangulate_roof(b.footprint), o);
   auto has = [&](Vec3 p) {
     for (Vec3 q : s.points)
       if (length(q - p) < 1e-12) return true;
@@ -155,7 +156,7 @@ TEST(SurfaceSamples, HoldCornersEdgesInsetPointsAndRespectTheCap) {
   EXPECT_FALSE(s.capped);
   o.max_samples_per_building = 400;
   o.spacing_m = 0.1;
-  const SurfaceSamples capped = surface_samples(b, o);
+  const SurfaceSamples capped = surface_samples(b, triangulate_roof(b.footprint), o);
   EXPECT_TRUE(capped.capped);
   EXPECT_LE(capped.points.size(), 400u);
   EXPECT_GT(capped.spacing_m, 0.1);

@@ -22,6 +22,7 @@
 #include "core/camera.hpp"
 #include "core/scene.hpp"
 #include "oracle/sampling.hpp"
+#include "oracle/witness_recheck.hpp"
 
 namespace cullcheck {
 
@@ -36,6 +37,9 @@ struct FrameVerdict {
   bool passed = true;
   std::vector<ObjectId> missed;     // visible (witnessed) but not in the visible set
   std::size_t witnessed = 0;        // objects the oracle saw
+  // Witnesses of missed objects re-cast in double precision before they count, and those
+  // dropped because they did not stand (oracle/witness_recheck.hpp); dropped ones are not missed.
+  oracle::WitnessRecheckCounts witness_recheck;
   std::uint64_t misdrawn_pixels = 0;
   std::uint64_t largest_blob = 0;   // 4-connected misdrawn pixels
   std::string oracle_model;         // exact_2d or ray_sampling_3d
