@@ -8,3 +8,8 @@ add_test(NAME pictures_test COMMAND pictures_test)
 add_executable(gate_verdict_test ${CMAKE_CURRENT_LIST_DIR}/tests/gate_verdict_test.cpp ${CMAKE_CURRENT_LIST_DIR}/tests/junit_test.cpp)
 target_link_libraries(gate_verdict_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
 add_test(NAME gate_verdict_test COMMAND gate_verdict_test)
+
+# The ε sweep's rows (report.json region_sweep[]) on a small seeded city.
+add_executable(region_sweep_test ${CMAKE_CURRENT_LIST_DIR}/tests/region_sweep_test.cpp)
+target_link_libraries(region_sweep_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
+add_test(NAME region_sweep_test COMMAND region_sweep_test)
