@@ -15,3 +15,12 @@ if(TARGET cullcheck_generators_rc AND TARGET rapidcheck AND TARGET GTest::gtest)
   add_test(NAME generators_test COMMAND generators_test)
   set_tests_properties(generators_test PROPERTIES LABELS generators TIMEOUT 600)
 endif()
+
+# Literal pins of the generators' output (generators/tests/pinned_streams_test.cpp): a changed
+# random stream invalidates every stored replay, and fails here. Plain GoogleTest, no RapidCheck.
+if(TARGET GTest::gtest)
+  add_executable(generator_pins_test ${CMAKE_CURRENT_LIST_DIR}/tests/pinned_streams_test.cpp)
+  target_link_libraries(generator_pins_test PRIVATE cullcheck_generators GTest::gtest_main cullcheck_warnings)
+  add_test(NAME generator_pins_test COMMAND generator_pins_test)
+  set_tests_properties(generator_pins_test PROPERTIES LABELS generators)
+endif()

@@ -15,7 +15,7 @@ target_link_libraries(oracle_test PRIVATE cullcheck_oracle GTest::gtest_main cul
 add_test(NAME oracle_test COMMAND oracle_test)
 
 if(TARGET benchmark::benchmark)
-  add_executable(oracle_bench ${CMAKE_CURRENT_LIST_DIR}/bench_oracle.cpp)
+  add_executable(oracle_bench ${CMAKE_CURRENT_LIST_DIR}/bench_oracle.cpp ${CMAKE_CURRENT_LIST_DIR}/bench_exact_2d.cpp)
     # The benchmark (not the oracle) uses the generators for the CLI's default city.
   target_link_libraries(oracle_bench PRIVATE cullcheck_oracle cullcheck_generators benchmark::benchmark cullcheck_warnings)
 endif()

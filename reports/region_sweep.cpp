@@ -2,10 +2,30 @@
 
 #include <cstdio>
 
+#include "engine/shrinking/minkowski_shrinking.hpp"
+
 #include "reports/statistics.hpp"
 #include "reports/verification.hpp"
 
 namespace cullcheck {
+
+namespace {
+
+// What shrink_minkowski's preprocessing makes of the scene's buildings for one ε: occluders, and
+// the buildings that cast no shadow, by reason (minkowski_shrinking.hpp).
+nlohmann::json minkowski_occluder_counts(const Scene& scene, double epsilon) {
+  MinkowskiOccluderCounts n;
+  for (const Building& b : scene.buildings) switch (minkowski_occluder(b, epsilon).outcome) {
+      case MinkowskiOutcome::occluder: ++n.occluders; break;
+      case MinkowskiOutcome::faces_removed: ++n.faces_removed; break;
+      case MinkowskiOutcome::invalid_footprint: ++n.invalid_footprint; break;
+      case MinkowskiOutcome::too_low: ++n.too_low; break;
+    }
+  return {{"occluders", n.occluders}, {"faces_removed", n.faces_removed}, {"invalid_footprint", n.invalid_footprint},
+          {"too_low", n.too_low}};
+}
+
+}  // namespace
 
 nlohmann::json region_radius_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
                                    const std::vector<double>& radii, double turn, bool on_tiling, const MethodOptions& options) {
@@ -32,6 +52,7 @@ nlohmann::json region_radius_sweep(const Scene& scene, const CameraPath& path, c
                       {"pvs_mean", mean(r.pvs_size)},
                       {"point_pvs_mean", point},
                       {"increase_over_point_pvs", point > 0 ? mean(r.pvs_size) / point - 1.0 : 0.0}});
+      if (r.method == "shrink_minkowski") rows.back()["minkowski_occluders"] = minkowski_occluder_counts(scene, radius);
     }
   }
   return rows;

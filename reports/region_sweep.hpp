@@ -16,7 +16,8 @@ namespace cullcheck {
 
 // One row per method and radius: {method, radius, turn, pvs_computed, frames_per_pvs,
 // seconds_per_pvs (at the path's frame rate), compute_ms_median, pvs_mean, point_pvs_mean,
-// increase_over_point_pvs}.
+// increase_over_point_pvs}; shrink_minkowski's rows also give minkowski_occluders {occluders,
+// faces_removed, invalid_footprint, too_low}: what its preprocessing made of the buildings at that ε.
 nlohmann::json region_radius_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
                                    const std::vector<double>& radii, double turn, bool on_tiling, const MethodOptions& options);
 // The rows as a printed table.

@@ -18,3 +18,8 @@ add_test(NAME fuzzing_test COMMAND fuzzing_test)
 add_executable(witness_recheck_report_test ${CMAKE_CURRENT_LIST_DIR}/tests/witness_recheck_report_test.cpp)
 target_link_libraries(witness_recheck_report_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
 add_test(NAME witness_recheck_report_test COMMAND witness_recheck_report_test)
+
+# The ε sweep's rows (report.json region_sweep[]) on a small seeded city.
+add_executable(region_sweep_test ${CMAKE_CURRENT_LIST_DIR}/tests/region_sweep_test.cpp)
+target_link_libraries(region_sweep_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
+add_test(NAME region_sweep_test COMMAND region_sweep_test)

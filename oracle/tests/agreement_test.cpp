@@ -81,6 +81,11 @@ TEST(OracleAgreement, EmbreeWitnessedSetLiesInsideTheExactSetAndCatchesEveryWide
               "interval (all must be witnessed), %zu narrow ones not witnessed\n",
               (unsigned long long)kCities, tally.buildings, tally.exact_visible, tally.witnessed, tally.wide,
               tally.narrow_missed);
+  // Both checks had something to check: buildings were witnessed (each one inside the exact set),
+  // and buildings were seen through wide intervals (each one witnessed).
+  EXPECT_GT(tally.witnessed, kCities);
+  EXPECT_GT(tally.wide, kCities);
+  EXPECT_LE(tally.witnessed, tally.exact_visible);
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -127,22 +127,22 @@ TEST(Exact2d, EmptySceneShowsNothing) {
   EXPECT_TRUE(exact_2d_applies(empty, omni_camera({0, 0, 1.7})));
 }
 
-TEST(Exact2d, FiveHundredBuildingsTakeWellUnderASecond) {
-  Scene scene;
-  SplitMix64 rng(99);
-  for (int i = 0; i < 25; ++i)
-    for (int j = 0; j < 20; ++j) {
-      const double x = i * 30 + 8 * rng.unit(), y = j * 30 + 8 * rng.unit();
-      scene.buildings.push_back(box_building(ObjectId(i * 20 + j), x, y, x + 10 + 8 * rng.unit(), y + 10 + 8 * rng.unit(), 30));
-    }
-  const auto start = std::chrono::steady_clock::now();
+// A city of 500 buildings: the exact set is the ray oracle's witnessed set or a superset (every
+// witness ray is a real sight line, the plan view is the truth here), and holds what the 360-degree
+// eye sees of its neighbourhood. Speed is BM_Exact2dFiveHundredBuildings's (oracle_bench), not a
+// test's: a time limit here would fail on a loaded machine and pass a slow oracle on a fast one.
+TEST(Exact2d, FiveHundredBuildingsAgreeWithTheRayOracle) {
+  const Scene scene = jittered_grid_500();
+  const Camera eye = omni_camera(kJitteredGridEye);
+  ASSERT_TRUE(exact_2d_applies(scene, eye));
   const ExactVisibility2d exact(scene);
-  const Exact2dResult r = exact.visible(omni_camera({372, 296, 1.7}));
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Exact2dResult r = exact.visible(eye);
   EXPECT_GT(r.visible.size(), 10u);
-  EXPECT_LT(seconds, 1.0);
-  std::printf("exact 2D on %zu buildings: %.3f s (build + one query, %zu visible, %zu polygon edges); query alone %.4f s\n",
-              scene.buildings.size(), seconds, r.visible.size(), r.visibility_polygon_edges, r.elapsed_seconds);
+  EXPECT_GT(r.visibility_polygon_edges, r.visible.size());
+  const std::vector<ObjectId> witnessed = RayOracle(scene).witness(eye).witnessed;
+  EXPECT_GT(witnessed.size(), 10u);
+  EXPECT_TRUE(std::includes(r.visible.begin(), r.visible.end(), witnessed.begin(), witnessed.end()))
+      << witnessed.size() << " witnessed, " << r.visible.size() << " exactly visible";
 }
 
 }  // namespace

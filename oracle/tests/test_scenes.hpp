@@ -156,4 +156,18 @@ inline RandomCity random_city(std::uint64_t seed) {
   return city;
 }
 
+// A jittered 25 x 20 grid of 500 boxes, 30 m tall, 30 m apart: the exact 2D oracle's size test
+// (Exact2d.FiveHundredBuildings...) and its benchmark (BM_Exact2dFiveHundredBuildings) use it.
+inline Scene jittered_grid_500() {
+  Scene scene;
+  SplitMix64 rng(99);
+  for (int i = 0; i < 25; ++i)
+    for (int j = 0; j < 20; ++j) {
+      const double x = i * 30 + 8 * rng.unit(), y = j * 30 + 8 * rng.unit();
+      scene.buildings.push_back(box_building(ObjectId(i * 20 + j), x, y, x + 10 + 8 * rng.unit(), y + 10 + 8 * rng.unit(), 30));
+    }
+  return scene;
+}
+inline constexpr Vec3 kJitteredGridEye{372, 296, 1.7};
+
 }  // namespace cullcheck::oracle::testing

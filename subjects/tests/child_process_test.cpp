@@ -1,6 +1,13 @@
 // ChildProcess (subjects/child_process.hpp) with `sh -c` one-liners: lines both ways, deadlines
 // that hold, exits and signals described, over-long lines, writes to a program that is gone, and
 // a destructor that kills what will not exit.
+//
+// No upper bounds on elapsed time (they fail on a loaded machine): a deadline is shown to hold by
+// what it returns against a program that would answer otherwise only much later (Io::timeout,
+// not the Io::closed of a 30 s sleep that ended), and a kill by the exit it causes against a
+// program that never ends by itself (a test that hangs instead fails at CTest's timeout). Lower
+// bounds stay: a deadline that fired early would pass under any load, and the clock cannot run
+// fast.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -60,21 +67,15 @@ TEST(ChildProcess, SeveralLinesInOneReadComeOutOneByOne) {
   EXPECT_EQ(p.read_line(line, 5, 1000), Io::closed);
 }
 
-TEST(ChildProcess, ReadTimesOutQuickly) {
-  const auto start = Clock::now();
-  {
-    ChildProcess p(sh("sleep 5"));
-    std::string line;
-    const auto before = Clock::now();
-    EXPECT_EQ(p.read_line(line, 0.2, 1000), Io::timeout);
-    const double waited = seconds_since(before);
-    EXPECT_GE(waited, 0.19);
-    EXPECT_LT(waited, 1.0);
-    EXPECT_FALSE(p.exited());
-    EXPECT_EQ(p.exit_description(), "still running");
-  }  // the destructor kills `sleep 5`
-  EXPECT_LT(seconds_since(start), 2.0);
-}
+TEST(ChildProcess, ReadTimesOutAtItsDeadline) {
+  ChildProcess p(sh("sleep 30"));
+  std::string line;
+  const auto before = Clock::now();
+  EXPECT_EQ(p.read_line(line, 0.2, 1000), Io::timeout);  // not Io::closed, 30 s later
+  EXPECT_GE(seconds_since(before), 0.19);                 // and not early
+  EXPECT_FALSE(p.exited());
+  EXPECT_EQ(p.exit_description(), "still running");
+}  // the destructor kills `sleep 30`
 
 TEST(ChildProcess, ExitStatusIsDescribed) {
   ChildProcess p(sh("exit 3"));
@@ -108,12 +109,11 @@ TEST(ChildProcess, SignalOfAProgramTheShellRanIsDescribed) {
 }
 
 TEST(ChildProcess, LineWithoutNewlineBeyondMaxBytesIsTooLong) {
-  // 100 bytes and no newline, then silence: after max_bytes = 10 it is too long (not a timeout).
-  ChildProcess p(sh("printf '%0100d' 0; sleep 5"));
+  // 100 bytes and no newline, then silence: after max_bytes = 10 it is too long (not a timeout,
+  // which is what waiting for the newline would give, after 30 s).
+  ChildProcess p(sh("printf '%0100d' 0; sleep 30"));
   std::string line;
-  const auto start = Clock::now();
-  EXPECT_EQ(p.read_line(line, 3, 10), Io::too_long);
-  EXPECT_LT(seconds_since(start), 2.0);
+  EXPECT_EQ(p.read_line(line, 30, 10), Io::too_long);
 }
 
 TEST(ChildProcess, ShortLinesWithinMaxBytesAreRead) {
@@ -147,11 +147,12 @@ TEST(ChildProcess, WritingToAProgramThatExitedIsClosed) {
 }
 
 TEST(ChildProcess, WritingToAProgramThatDoesNotReadTimesOut) {
-  // 1 MiB into a pipe (64 KiB buffer) that nobody reads: the deadline holds.
-  ChildProcess p(sh("sleep 5"));
+  // 1 MiB into a pipe (64 KiB buffer) that nobody reads: the deadline holds (Io::timeout, not
+  // the Io::closed of a write that blocked until the program exited 30 s later).
+  ChildProcess p(sh("sleep 30"));
   const auto start = Clock::now();
   EXPECT_EQ(p.write(std::string(1 << 20, 'x'), 0.2), Io::timeout);
-  EXPECT_LT(seconds_since(start), 1.0);
+  EXPECT_GE(seconds_since(start), 0.19);
 }
 
 TEST(ChildProcess, StderrGoesToItsFile) {
@@ -178,9 +179,8 @@ bool gone(pid_t pid) {
 
 TEST(ChildProcess, DestructorKillsAProgramThatIgnoresEndOfInput) {
   // The shell ignores end of input and SIGTERM, and starts a background sleep in its process
-  // group; the destructor must kill both, at once.
+  // group; the destructor must kill both (else it never returns: the loop does not end).
   pid_t grandchild = -1;
-  const auto start = Clock::now();
   {
     ChildProcess p(sh("trap '' TERM; sleep 30 & echo $!; while :; do sleep 1; done"));
     std::string line;
@@ -189,10 +189,11 @@ TEST(ChildProcess, DestructorKillsAProgramThatIgnoresEndOfInput) {
     p.close_input();
     EXPECT_FALSE(p.exited());
   }
-  EXPECT_LT(seconds_since(start), 2.0);
   ASSERT_GT(grandchild, 0);
+  // SIGKILL went to the group; give the kernel time to deliver it even on a loaded machine (the
+  // sleep it kills would last 30 s).
   const auto waiting = Clock::now();
-  while (!gone(grandchild) && seconds_since(waiting) < 2) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  while (!gone(grandchild) && seconds_since(waiting) < 20) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_TRUE(gone(grandchild)) << "the background sleep " << grandchild << " survived";
 }
 
@@ -200,10 +201,8 @@ TEST(ChildProcess, FinishKillsAfterItsTimeout) {
   ChildProcess p(sh("trap '' TERM; while :; do sleep 1; done"));
   const auto start = Clock::now();
   p.finish(0.2);
-  const double waited = seconds_since(start);
-  EXPECT_GE(waited, 0.19);
-  EXPECT_LT(waited, 1.5);
-  ASSERT_TRUE(p.exited());
+  EXPECT_GE(seconds_since(start), 0.19);  // it was given its time
+  ASSERT_TRUE(p.exited());                // and then killed: the loop never ends by itself
   EXPECT_EQ(p.exit_description(), "killed by signal 9 (" + std::string(::strsignal(SIGKILL)) + ")");
 }
 

