@@ -103,9 +103,12 @@ void expect_floor(const HardCaseCoverage& coverage, HardCase k, double floor) {
   EXPECT_GE(coverage.share(k), floor) << kHardCaseNames[int(k)] << ": " << coverage.summary("these");
 }
 
-// Measured at the CI seed (300 cases of OH(OS)): culls beyond the frustum 45.7%, gap < 1 m 14.3%,
-// eye at a wall 43.7%, steep 28.0%; ΔH and frustum culling (100 cases each) alike.
-constexpr double kFloorBeyondFrustum = 0.30, kFloorNarrowGap = 0.09, kFloorNearWall = 0.25, kFloorSteep = 0.18;
+// Measured at the CI seed (300 cases of OH(OS)): culls beyond the frustum 49.3%, gap < 1 m 11.0%,
+// eye at a wall 39.3%, steep 25.7% (ΔH 60/13/43/23%, frustum culling -/11/41/30%, 100 cases
+// each). The lowest over seeds 1-5 and all three runs: 43%, 4%, 36%, 14%. The floors sit below
+// those: the gap is the rarest (only the oracle's first witness ray of each building is measured,
+// and a building seen through a gap is often seen some other way first).
+constexpr double kFloorBeyondFrustum = 0.28, kFloorNarrowGap = 0.03, kFloorNearWall = 0.22, kFloorSteep = 0.10;
 
 TEST(Conservativeness, ObjectSpaceHorizonReachesTheHardCases) {
   const HardCaseCoverage c = hard_case_run("oh_os_conservative", 300);

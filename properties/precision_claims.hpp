@@ -4,8 +4,9 @@
 //  - over-estimation: Σ|PVS| / Σ|oracle-witnessed| over the cases, at most max_overestimation;
 //  - culling beyond the frustum: the share of cases whose PVS lacks a building the frustum PVS
 //    keeps, at least min_share_beyond_frustum (0 for frustum culling, which claims none).
-// The bounds are the measured figures (CI seed, printed by the test) with a margin of about a
-// third, so they fail when a method loses much of its culling, not on noise.
+// The bounds are the measured figures (CI seed and seeds 1-6, printed by the test) with a margin
+// of about a third of the worst, so they fail when a method loses much of its culling, not on a
+// rotated seed's noise (CULLCHECK_SEED, property_main.cpp).
 #pragma once
 
 #include <cstdio>
@@ -23,13 +24,15 @@ struct PrecisionClaim {
 // nullopt for methods without a precision claim here.
 inline std::optional<PrecisionClaim> precision_claim(std::string_view method) {
   // The horizon methods on level cameras (OH(IS)'s claim holds there), 4096 bins. Measured at the
-  // CI seed over 118 cases: over-estimation 1.43 (OH(OS), both ΔH on one frame) and 1.66
-  // (OH(IS)); culling beyond the frustum in 93.2% and 92.4% of the cases.
+  // CI seed over 119 cases: over-estimation 1.40 (OH(OS), both ΔH on one frame) and 1.60
+  // (OH(IS)); culling beyond the frustum in 93.3% and 91.6% of the cases. Over seeds 1-6 the
+  // worst were 1.46 and 1.73, and 94.2%.
   if (method == "oh_os_conservative" || method == "oh_os_thesis" || method == "delta_h_guarded" ||
       method == "delta_h_thesis" || method == "oh_is")
-    return PrecisionClaim{2.2, 0.6};
-  // Measured 5.41 (a returned-everything PVS: 16.1).
-  if (method == "frustum") return PrecisionClaim{7.5, 0.0};
+    return PrecisionClaim{2.4, 0.6};
+  // Measured 5.71 at the CI seed, 5.30-7.44 over seeds 1-6 (a PVS of every building: 18.4 at the
+  // CI seed, 16.3-21.3 over seeds 1-6).
+  if (method == "frustum") return PrecisionClaim{11.0, 0.0};
   return std::nullopt;
 }
 
