@@ -47,7 +47,9 @@ TEST(StrawMen, ConservativenessRejectsDroppingOneVisibleBuilding) {
     const std::vector<ObjectId> pvs = straw.cull(c.camera).pvs;
     const oracle::OracleAnswer seen = oracle::Oracle(scene).visible_set(c.camera, property_oracle());
     const auto miss = first_miss(seen, pvs);
-    if (miss) RC_FAIL("straw man misses building " + std::to_string(*miss) + " (dropped " + std::to_string(*straw.dropped()) + ")");
+    if (miss)
+      RC_FAIL("straw man misses building " + std::to_string(*miss) + " (dropped " +
+              (straw.dropped() ? std::to_string(*straw.dropped()) : std::string("none")) + ")");
   }, /*expect_failure=*/true);
   EXPECT_FALSE(run.held) << "the conservativeness check passed a method that drops a visible building in every case";
 }
