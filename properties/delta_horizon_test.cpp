@@ -21,6 +21,7 @@
 #include "generators/camera_paths.hpp"
 #include "generators/rapidcheck_moves.hpp"
 #include "oracle/oracle.hpp"
+#include "properties/method_options_gen.hpp"
 #include "properties/property_oracle.hpp"
 
 namespace cullcheck {
@@ -53,14 +54,12 @@ std::string replay_of(const generators::SceneSpec& spec, const PathCase& c, cons
 
 // Runs full OH(OS) and the guarded ΔH side by side along `path`; fails at the first frame where
 // their PVS or final horizon differ.
-// The guard's motion budget is drawn too (small budgets certify more but re-anchor more often).
+// Every engine option is drawn (method_options_gen.hpp), the same for both: horizon bins, leaf
+// size and the guard's motion budget (small budgets certify more but re-anchor more often).
 void check_incremental_equals_full(const generators::SceneSpec& spec, const Scene& scene, const PathCase& c) {
   const CameraPath& path = c.path;
-  MethodOptions options;
-  options.delta_radius = *rc::gen::element(0.05, 0.25, 1.0, 4.0);
-  options.delta_height = *rc::gen::element(0.05, 0.5, 2.0);
-  options.delta_turn = *rc::gen::element(0.01, 0.2, 0.6);
-  ObjectSpaceHorizonCulling full(scene, ShadowRule::conservative);
+  const MethodOptions options = *method_options();
+  ObjectSpaceHorizonCulling full(scene, ShadowRule::conservative, options);
   GuardedDeltaHorizonCulling delta(scene, options);
   std::uint64_t fires = 0, skipped = 0;
   for (std::size_t f = 0; f < path.frames.size(); ++f) {
@@ -72,7 +71,7 @@ void check_incremental_equals_full(const generators::SceneSpec& spec, const Scen
     if (a.pvs != b.pvs || full.horizon().bin_values() != delta.horizon().bin_values()) {
       RC_LOG() << "frame " << f << ": full PVS " << a.pvs.size() << ", guarded ΔH PVS " << b.pvs.size()
                << (a.pvs == b.pvs ? " (same), horizons differ" : "") << "\nreplay: "
-               << replay_of(spec, c, "delta_h_guarded,oh_os_conservative") << "\n";
+               << replay_of(spec, c, "delta_h_guarded,oh_os_conservative") << " " << option_flags(options) << "\n";
       RC_FAIL("guarded ΔH differs from full OH(OS)");
     }
   }

@@ -2,13 +2,22 @@
 // so CI runs are reproducible, and scales the budget with CULLCHECK_RC_BUDGET (e.g. 20 for a
 // long fuzzing run; the default is 500 cases per property). On a failure RapidCheck prints RC_PARAMS="reproduce=..."; together with
 // the test binary and --gtest_filter that is the one-line replay, which we print as well.
+//
+// Seeds: CI runs the fixed seed 20261125. Nightly runs rotate it: CULLCHECK_SEED=date takes the
+// UTC date as YYYYMMDD (a new seed each day, the same all day on every machine), CULLCHECK_SEED=N
+// takes N. The seed in use is printed first as the line that replays the whole run.
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstdint>
 #include <cstdlib>
+#include <ctime>
 #include <iostream>
 #include <string>
 
 namespace {
+
+constexpr std::uint64_t kCiSeed = 20261125;
 
 class ReplayPrinter : public testing::EmptyTestEventListener {
  public:
@@ -27,14 +36,39 @@ class ReplayPrinter : public testing::EmptyTestEventListener {
   std::string binary_;
 };
 
+// The seed CULLCHECK_SEED names: unset or empty for the CI seed, "date" for today's UTC date as
+// YYYYMMDD, else a decimal number. Anything else is refused (exit 2) rather than guessed at.
+std::uint64_t run_seed() {
+  const char* s = std::getenv("CULLCHECK_SEED");
+  if (s == nullptr || *s == '\0') return kCiSeed;
+  const std::string text = s;
+  if (text == "date") {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    return static_cast<std::uint64_t>((utc.tm_year + 1900) * 10000 + (utc.tm_mon + 1) * 100 + utc.tm_mday);
+  }
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long n = std::strtoull(text.c_str(), &end, 10);
+  if (errno != 0 || end == text.c_str() || *end != '\0' || text.front() == '-') {
+    std::cerr << "CULLCHECK_SEED='" << text << "' is neither 'date' nor a non-negative decimal number\n";
+    std::exit(2);
+  }
+  return n;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (std::getenv("RC_PARAMS") == nullptr) {
     long budget = 1;
     if (const char* b = std::getenv("CULLCHECK_RC_BUDGET")) budget = std::max(1L, std::strtol(b, nullptr, 10));
-    const std::string params = "seed=20261125 max_success=" + std::to_string(500 * budget) + " max_size=100";
+    const std::uint64_t seed = run_seed();
+    const std::string params = "seed=" + std::to_string(seed) + " max_success=" + std::to_string(500 * budget) + " max_size=100";
     setenv("RC_PARAMS", params.c_str(), 1);
+    std::cout << "replay: RC_PARAMS=\"" << params << "\" " << argv[0]
+              << (seed == kCiSeed ? "   (the fixed CI seed)\n" : "   (rotated by CULLCHECK_SEED)\n");
   }
   testing::InitGoogleTest(&argc, argv);
   testing::UnitTest::GetInstance()->listeners().Append(new ReplayPrinter(argv[0]));

@@ -16,8 +16,11 @@
 #include "engine/shrinking/region_shrinking.hpp"
 #include "generators/random.hpp"
 #include "generators/rapidcheck_gens.hpp"
+#include "generators/rapidcheck_hard_cases.hpp"
 #include "oracle/oracle.hpp"
+#include "properties/method_options_gen.hpp"
 #include "properties/property_oracle.hpp"
+#include "properties/property_run.hpp"
 
 namespace cullcheck {
 namespace {
@@ -61,8 +64,9 @@ struct Miss {
   ObjectId building = 0;
   std::string witness;
 };
-std::optional<Miss> region_miss(const std::string& method, const Scene& scene, const RegionCase& r) {
-  auto engine = make_region_method(method, scene);
+std::optional<Miss> region_miss(const std::string& method, const Scene& scene, const RegionCase& r,
+                                const MethodOptions& options = {}) {
+  auto engine = make_region_method(method, scene, options);
   const std::vector<ObjectId> pvs = engine->cull_region({r.scene_case.camera, r.radius, r.turn}).pvs;
   const oracle::Oracle truth(scene);
   for (const Camera& v : sample_viewpoints(r)) {
@@ -123,6 +127,29 @@ RC_GTEST_PROP(RegionShrinking, CertifiedShrinkingHoldsOverTheDisc, ()) {
 RC_GTEST_PROP(RegionShrinking, MinkowskiShrinkingHoldsOverTheDisc, ()) { holds_over_the_disc("shrink_minkowski"); }
 RC_GTEST_PROP(RegionShrinking, CorrectedAdjustableShrinkingHoldsOverTheDisc, ()) {
   holds_over_the_disc("shrink_adjustable_corrected");
+}
+
+// The same over the hard cases (rapidcheck_hard_cases.hpp: occluded Manhattan grids, sub-metre
+// gaps, eyes at walls, aimed and steep cameras), with the engine's options drawn over their range
+// (method_options_gen.hpp) and the method drawn among those claiming the disc.
+TEST(RegionShrinking, ConservativeRegionMethodsHoldOnHardCasesWithDrawnOptions) {
+  const std::vector<std::string> methods{"shrink_former", "shrink_adjustable_conservative", "shrink_minkowski",
+                                         "shrink_adjustable_corrected"};
+  for (const std::string& m : methods) ASSERT_TRUE(make_region_method(m, Scene{})->claims_conservative()) << m;
+  const auto hard_region_case = rc::gen::map(
+      rc::gen::tuple(rcgen::hard_scene_case(), rc::gen::element(0.05, 0.5, 2.0, 8.0), rc::gen::element(0.0, 0.05, 0.2),
+                     rc::gen::inRange(0, 360)),
+      [](const auto& t) { return RegionCase{std::get<0>(t), std::get<1>(t), std::get<2>(t), std::get<3>(t) * kPi / 180}; });
+  const PropertyOutcome run = run_property("region methods hold over the disc on hard cases with drawn options", 60, true, [&] {
+    const RegionCase r = *hard_region_case;
+    const std::string method = *rc::gen::elementOf(methods);
+    const MethodOptions options = *method_options();
+    const Scene scene = generators::scene_of(r.scene_case.spec);
+    RC_PRE(!scene.buildings.empty());
+    const auto miss = region_miss(method, scene, r, options);
+    if (miss) RC_FAIL(describe(r, *miss, method) + " with " + option_flags(options));
+  });
+  EXPECT_TRUE(run.held) << "a region method misses a building the oracle sees (case above)";
 }
 
 // The claims ledger's counterexample to the first corrected variant (which dropped a shadow only
