@@ -14,14 +14,20 @@ namespace {
 std::string num(double v) { return nlohmann::json(v).dump(); }
 std::string pair_text(Vec2 p) { return "[" + num(p.x) + ", " + num(p.y) + "]"; }
 
-// a + b when the double sum is exact (Knuth's TwoSum: the rounding error is itself a double,
-// and zero exactly when nothing was lost), else nullopt.
-std::optional<double> exact_sum(double a, double b) {
+// a + b rounded once, and what the rounding lost (Knuth's TwoSum: the error is itself a double,
+// and zero exactly when the sum is exact).
+struct Sum {
+  double value, error;
+};
+Sum two_sum(double a, double b) {
   const double s = a + b;
   const double bb = s - a;
-  const double error = (a - (s - bb)) + (b - bb);
-  if (error != 0.0 || !std::isfinite(s)) return std::nullopt;
-  return s;
+  return {s, (a - (s - bb)) + (b - bb)};
+}
+std::optional<double> exact_sum(double a, double b) {
+  const Sum s = two_sum(a, b);
+  if (s.error != 0.0 || !std::isfinite(s.value)) return std::nullopt;
+  return s.value;
 }
 
 }  // namespace
@@ -59,14 +65,18 @@ CoordinateConversion to_scene_local(CameraPath& path, const Scene& scene, std::o
                                          " is not exact in double precision");
   for (std::size_t i = 0; i < path.frames.size(); ++i) {
     Vec3& p = path.frames[i].position;
-    const std::optional<double> x = exact_sum(p.x, *dx), y = exact_sum(p.y, *dy);
-    if (!x || !y)
+    const Sum x = two_sum(p.x, *dx), y = two_sum(p.y, *dy);
+    // World positions are as fine as doubles get there; a local one (finer near its origin) can
+    // only be moved to another origin rounded, once, by less than half an ulp of the result.
+    if ((x.error != 0.0 || y.error != 0.0) && c.given == CoordinateFrame::world)
       throw InputError(file, "frames[" + std::to_string(i) + "].position",
-                       "[" + num(p.x) + ", " + num(p.y) + "] (" + frame_name(c.given) + ") minus the shift " +
-                           pair_text({0.0 - *dx, 0.0 - *dy}) + " to scene-local coordinates would round in double precision: give "
-                           "this camera in scene-local coordinates");
-    c.moved = c.moved || *x != p.x || *y != p.y;
-    p.x = *x, p.y = *y;
+                       "[" + num(p.x) + ", " + num(p.y) + "] (world) minus the scene's origin " + pair_text(scene.origin) +
+                           " would round in double precision: give this camera in scene-local coordinates");
+    if (!std::isfinite(x.value) || !std::isfinite(y.value))
+      throw InputError(file, "frames[" + std::to_string(i) + "].position", "is not finite once moved to the scene's origin");
+    c.rounding_m = std::max({c.rounding_m, std::abs(x.error), std::abs(y.error)});
+    c.moved = c.moved || x.value != p.x || y.value != p.y;
+    p.x = x.value, p.y = y.value;
   }
   path.coordinates = CoordinateFrame::local;
   path.origin = scene.origin;
@@ -117,6 +127,7 @@ std::string coordinates_line(const CoordinateConversion& c, const std::string& f
                      ")";
   if (c.declared_origin) line += " relative to origin " + pair_text(*c.declared_origin);
   line += c.moved ? ", converted to scene-local" : ", used as they are";
+  if (c.rounding_m > 0.0) line += " (rounded by at most " + num(c.rounding_m) + " m)";
   return line;
 }
 

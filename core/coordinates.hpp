@@ -34,12 +34,15 @@ struct CoordinateConversion {
   Vec2 origin;                         // the scene's: world = local + origin
   std::optional<Vec2> declared_origin;  // a local file's own "origin"
   bool moved = false;                   // some position changed (world given, or another origin)
+  double rounding_m = 0.0;              // largest rounding of a local position moved to the origin
 };
 
 // Turns `path` into scene-local coordinates of `scene`: world positions minus the origin, local
-// ones relative to another declared origin moved to the scene's. Every subtraction is checked to
-// be exact; with whole-metre origins (rebasing makes them so) it is for every eye nearer the
-// origin than world (0, 0). One that would round is an InputError naming `file` and the frame.
+// ones relative to another declared origin moved to the scene's. World positions convert exactly
+// (checked: with a whole-metre origin, as rebasing makes it, they do for every eye nearer the
+// origin than world (0, 0)); one that would round is an InputError naming `file` and the frame.
+// A local position moved to another origin is rounded once, by less than half an ulp of the
+// result (finer than any world position there), and the largest rounding is kept.
 // `fallback` is the frame of a file that does not say (--coordinates; nullopt: local); a fallback
 // that contradicts the file is an InputError. Afterwards the path says local, with the origin.
 CoordinateConversion to_scene_local(CameraPath& path, const Scene& scene, std::optional<CoordinateFrame> fallback,

@@ -124,7 +124,8 @@ Runner add_report(CLI::App& app) {
       f->vbaoi.options.graph.method_options = f->tuning.options;
       vbaoi_scene = f->vbaoi_city.load();
     }
-    const CameraPath path = f->path.load(scene);
+    CoordinateConversion coordinates;
+    const CameraPath path = f->path.load(scene, &coordinates);
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.oracle_stride = f->oracle_stride;
@@ -135,7 +136,8 @@ Runner add_report(CLI::App& app) {
     options.region_turn = f->regions.turn;
     options.region_on_tiling = f->regions.placement == "tiling";
     std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
-              << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
+              << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n"
+              << coordinates_line(coordinates, f->path.source_name("")) << "\n";
     const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags(), parse_methods(f->methods),
                                                   f->tuning.options, options, /*require_any=*/false);
     f->claim_options.sampling = f->sampling.sampling;
@@ -145,6 +147,7 @@ Runner add_report(CLI::App& app) {
     in.source = f->scene.source;
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
+    in.coordinates = coordinates;
     in.verification = &v;
     in.claims = subject_claims(v);
     for (ClaimCheck& c : check_shadow_elevation_rule(f->claim_options)) in.claims.push_back(std::move(c));
@@ -215,7 +218,7 @@ Runner add_report(CLI::App& app) {
       document["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
-    std::cout << summary_table(v);
+    std::cout << coordinates_line(coordinates, f->path.source_name("")) << "\n" << summary_table(v);
     for (const ClaimCheck& c : in.claims) {
       std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
                 << c.violations << " violations)\n";

@@ -144,8 +144,20 @@ TEST(Coordinates, ConversionThatWouldRoundIsRefused) {
   s.origin = {0.1, 0.0};
   CameraPath p = path_from_json_text(path_text(R"("coordinates":"world",)", R"({"position":[5000000.3,0,1.7]})"));
   EXPECT_EQ(message_of([&] { to_scene_local(p, s, std::nullopt, "p.json"); }),
-            "p.json: field 'frames[0].position': [5000000.3, 0.0] (world) minus the shift [0.1, 0.0] to scene-local coordinates "
-            "would round in double precision: give this camera in scene-local coordinates");
+            "p.json: field 'frames[0].position': [5000000.3, 0.0] (world) minus the scene's origin [0.1, 0.0] would round in "
+            "double precision: give this camera in scene-local coordinates");
+}
+
+TEST(Coordinates, LocalPositionMovedToAnotherOriginIsRoundedOnceAndSaysByHowMuch) {
+  // 0.1 (local to origin (5000011, 3000005)) is 1.1 local to the scene's (5000010, 3000005):
+  // 0.1 + 1 rounds (0.1's low bits are finer than 1.1's ulp); TwoSum gives the loss exactly:
+  // 0.1 + 1 - fl(0.1 + 1) = -8.326672684688674e-17.
+  const Scene s = far_block();
+  CameraPath p = path_from_json_text(path_text(R"("origin":[5000011,3000005],)", R"({"position":[0.1,0,1.7]})"));
+  const CoordinateConversion c = to_scene_local(p, s, std::nullopt, "p.json");
+  EXPECT_EQ(p.frames[0].position.x, 1.1);
+  EXPECT_EQ(c.rounding_m, 8.326672684688674e-17);
+  EXPECT_NE(coordinates_line(c, "p.json").find("converted to scene-local (rounded by at most 8.326672684688674e-17 m)"), std::string::npos);
 }
 
 TEST(Coordinates, WorldPathReadAsLocalIsRefusedNotPassedVacuously) {
