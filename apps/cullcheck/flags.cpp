@@ -36,11 +36,12 @@ void SceneFlags::add(CLI::App& app) {
 void CoordinateFlags::add(CLI::App& app, const std::string& applies_to) {
   app.add_option("--coordinates", frame,
                  "Frame of " + applies_to +
-                     " JSON that does not say its own (\"coordinates\": \"world\"|\"local\" in the file wins; a flag "
-                     "that contradicts it is an error): local = scene-local metres, the default, as cullcheck writes "
-                     "them; world = local + the scene's origin (far scenes are rebased on load; the origin is printed). "
-                     "An input whose every eye lies outside the scene's bounds grown by max(1 km, its size) is refused")
-      ->check(CLI::IsMember({"world", "local"}))
+                     " JSON that does not say its own (a file's \"coordinates\": \"world\"|\"local\" is read as it "
+                     "says; a flag that contradicts it is an error): local = scene-local metres, the default, as "
+                     "cullcheck writes them; world = local + the scene's origin (far scenes are rebased on load; the "
+                     "origin is printed). An input whose every eye lies outside the scene's bounds grown by "
+                     "max(1 km, its size) is refused")
+      ->check(CLI::IsMember({"world", "local"}).description(""))
       ->type_name("world|local");
 }
 

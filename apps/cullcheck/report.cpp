@@ -136,8 +136,7 @@ Runner add_report(CLI::App& app) {
     options.region_turn = f->regions.turn;
     options.region_on_tiling = f->regions.placement == "tiling";
     std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
-              << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n"
-              << coordinates_line(coordinates, f->path.source_name("")) << "\n";
+              << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
     const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags(), parse_methods(f->methods),
                                                   f->tuning.options, options, /*require_any=*/false);
     f->claim_options.sampling = f->sampling.sampling;
