@@ -383,15 +383,15 @@ expect_replay_fails_the_same "gate: a subject that reads another scene" "--frame
 TMPDIR="$work/no-such-dir" expect_exit 2 "gate: unusable TMPDIR" "$cc" gate "${small[@]}" --subject "$subjects/minimal_subject" -o "$work/m.json"
 expect_error_names "gate: unusable TMPDIR" "TMPDIR $work/no-such-dir: field '(folder)': cannot hold a temporary folder"
 # Exit 3 when no verdict was reached: out of memory under a 500 MB address-space limit (the city
-# of 6,000,000 buildings needs gigabytes; the small city runs within it), and the report already
-# there is left as it was. Sanitizer builds reserve terabytes of shadow memory and cannot run
-# under ulimit -v, so they skip it.
-if grep -aq -e __asan_init -e __tsan_init -e __msan_init "$cc"; then
+# of 6,000,000 buildings needs gigabytes, the small one is generated within it; the gate fails
+# while generating, before the oracle's threads exist), and the report already there is left as
+# it was. Sanitizer builds reserve terabytes of shadow memory and cannot run under ulimit -v, so
+# they skip it.
+if grep -aq -e __asan_init -e __tsan_init -e __msan_init -e AddressSanitizer -e ThreadSanitizer "$cc"; then
   echo "cli_test: skipped the out-of-memory case (sanitizer build)"
 else
   echo '{"kept":true}' >"$work/kept.json"
-  expect_exit 0 "gate within 500 MB" bash -c 'ulimit -v 500000 && exec "$@"' _ "$cc" gate "${small[@]}" --path-params '{"frames":2}' \
-    --method frustum -o "$work/m.json"
+  expect_exit 0 "generate within 500 MB" bash -c 'ulimit -v 500000 && exec "$@"' _ "$cc" generate "${small[@]}" -o "$work/m.json"
   expect_exit 3 "gate out of memory" bash -c 'ulimit -v 500000 && exec "$@"' _ "$cc" gate --generator manhattan \
     --params '{"blocks_x":1000,"blocks_y":1000}' --method frustum -o "$work/kept.json"
   expect_error_names "gate out of memory" "^cullcheck: internal error: out of memory (std::bad_alloc): no verdict was reached$"
