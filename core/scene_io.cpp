@@ -278,6 +278,15 @@ Scene read_scene_file(const std::string& path) {
   }
 }
 
+CameraPath read_path_file(const std::string& path) {
+  const std::string text = read_text_file(path);
+  try {
+    return path_from_json_text(text);
+  } catch (const InputError& e) {
+    throw e.located(path);
+  }
+}
+
 void write_scene_file(const Scene& scene, const std::string& path) { write_text_file_atomically(path, scene_to_json_text(scene)); }
 
 namespace {
@@ -299,6 +308,29 @@ json camera_json(const Camera& c) {
   j["far"] = number(c.far);
   if (c.width > 0) j["resolution"] = {c.width, c.height};
   return j;
+}
+
+// "coordinates" and "origin" say which frame a camera or path file is in (core/coordinates.hpp).
+void read_frame_keys(const json& j, const std::string& object, CameraPath& out) {
+  if (auto it = j.find("coordinates"); it != j.end()) {
+    if (*it == "local") out.coordinates = CoordinateFrame::local;
+    else if (*it == "world") out.coordinates = CoordinateFrame::world;
+    else throw InputError(object, "coordinates", "must be \"local\" (scene-local metres) or \"world\" (local + the scene's origin), got " + it->dump());
+  }
+  if (auto it = j.find("origin"); it != j.end()) {
+    if (out.coordinates == CoordinateFrame::world)
+      throw InputError(object, "origin", "names the origin local coordinates are relative to: world coordinates have none");
+    if (!it->is_array() || it->size() != 2) throw InputError(object, "origin", "must be [x, y]");
+    out.origin = Vec2{finite_number((*it)[0], object, "origin[0]"), finite_number((*it)[1], object, "origin[1]")};
+    out.coordinates = CoordinateFrame::local;
+  }
+}
+
+// A frame key where no frame may be declared is an error, not ignored: a camera in world
+// coordinates read as local would be kilometres off and see nothing.
+void reject_frame_keys(const json& j, const std::string& object, const char* why) {
+  for (const char* key : {"coordinates", "origin"})
+    if (j.is_object() && j.contains(key)) throw InputError(object, key, why);
 }
 
 Camera camera_from(const json& j, const std::string& object) {
@@ -363,7 +395,19 @@ Camera camera_from(const json& j, const std::string& object) {
 std::string camera_to_json_text(const Camera& camera) { return camera_json(camera).dump() + "\n"; }
 
 Camera camera_from_json_text(const std::string& text, const std::string& object) {
-  return camera_from(parse(text, object), object);
+  const json j = parse(text, object);
+  reject_frame_keys(j, object, "cameras here are scene-local: only camera files and flags (--camera, --from) say their frame");
+  return camera_from(j, object);
+}
+
+CameraPath single_camera_from_json_text(const std::string& text, const std::string& object) {
+  json j = parse(text, object);
+  CameraPath path;
+  path.kind = "single_camera";
+  read_frame_keys(j, object, path);
+  if (j.is_object()) j.erase("coordinates"), j.erase("origin");
+  path.frames.push_back(camera_from(j, object));
+  return path;
 }
 
 std::string path_to_json_text(const CameraPath& path) {
@@ -372,6 +416,8 @@ std::string path_to_json_text(const CameraPath& path) {
   json doc = {{"format", "cullcheck-path"}, {"version", 1},         {"kind", path.kind},
               {"seed", path.seed},          {"frames_per_second", number(path.frames_per_second)},
               {"frames", std::move(frames)}};
+  if (path.coordinates) doc["coordinates"] = *path.coordinates == CoordinateFrame::world ? "world" : "local";
+  if (path.origin) doc["origin"] = {number(path.origin->x), number(path.origin->y)};
   return doc.dump() + "\n";
 }
 
@@ -383,9 +429,14 @@ CameraPath path_from_json_text(const std::string& text) {
   if (auto it = doc.find("seed"); it != doc.end() && it->is_number_unsigned()) path.seed = *it;
   path.frames_per_second = finite_number(member(doc, "frames_per_second", "path"), "path", "frames_per_second");
   if (path.frames_per_second <= 0) throw InputError("path", "frames_per_second", "must be > 0");
+  read_frame_keys(doc, "path", path);
   const json& frames = member(doc, "frames", "path");
   if (!frames.is_array()) throw InputError("path", "frames", "must be an array");
-  for (std::size_t i = 0; i < frames.size(); ++i) path.frames.push_back(camera_from(frames[i], "path frame " + std::to_string(i)));
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const std::string object = "path frame " + std::to_string(i);
+    reject_frame_keys(frames[i], object, "belongs to the whole path (its top level), not to one frame");
+    path.frames.push_back(camera_from(frames[i], object));
+  }
   return path;
 }
 

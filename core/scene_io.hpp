@@ -20,6 +20,12 @@
 // "aspect" (read only) derives the missing one of hfov/vfov (ortho_width/ortho_height); without
 // it, a given resolution's width / height does (square pixels). Giving both fields and an
 // aspect is an error.
+//
+// Camera and path files may say which frame their positions are in (core/coordinates.hpp):
+// "coordinates": "local" (scene-local metres, what files that do not say are read as) or "world"
+// (local + the scene's origin), and with local ones "origin": [x, y], the origin they are local
+// to. A path says it once, at its top level; a path frame that says it is an error, and so is a
+// camera read where only scene-local cameras belong (camera_from_json_text).
 #pragma once
 
 #include <iosfwd>
@@ -59,9 +65,14 @@ Building box_building(ObjectId id, double x0, double y0, double x1, double y1, d
 void rebase_if_far(Scene& scene);
 
 std::string camera_to_json_text(const Camera& camera);
+// A scene-local camera (protocol frames, generator parameters): "coordinates"/"origin" are refused.
 Camera camera_from_json_text(const std::string& text, const std::string& object = "camera");
+// A camera as a user gives it (--camera, --from): a one-frame path with its frame, if it says one.
+CameraPath single_camera_from_json_text(const std::string& text, const std::string& object = "camera");
 std::string path_to_json_text(const CameraPath& path);
 CameraPath path_from_json_text(const std::string& text);
+// path_from_json_text of a file; errors name the file.
+CameraPath read_path_file(const std::string& path);
 
 // Whole-file helpers that raise InputError naming the file when it cannot be read or written;
 // writes go to a temporary file that is renamed, so a failure never truncates existing output.

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of the `cullcheck` program: every subcommand runs, bad input gives one clear
-# line and exit 2, a failed run never clobbers a file already written, output is deterministic.
+# line and exit 2, a failed run never clobbers a file already written, output is deterministic,
+# cameras in world and scene-local coordinates, and every way the gate fails (exit 1 with a replay
+# that fails again the same way, 2, 3).
 # Usage: cli_test.sh /path/to/cullcheck BUILD_DIR SOURCE_DIR
 #   (BUILD_DIR holds examples/subjects/*; SOURCE_DIR the repository, for the Python subjects)
 set -u
@@ -161,6 +163,24 @@ walk=(--path-params '{"frames":12}')
 json_field() {  # file python-expression-on-d
   python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"
 }
+# The first violation printed, as "METHOD OBJECT FRAME" (gate says "object", verify "building").
+first_miss() {
+  sed -n 's/^violation: \([^ ]*\) culled [a-z]* \([0-9]*\) at frame \([0-9]*\) .*/\1 \2 \3/p' "$1" | head -1
+}
+# Runs the replay line printed under the first violation in $work/out: it must hold `text`, exit 1
+# and report the same first miss (method, object, frame).
+expect_replay_fails_the_same() {  # description text-the-replay-must-hold
+  local what=$1 must=$2 miss replay got out=()
+  miss=$(first_miss "$work/out")
+  replay=$(grep -m1 "^  replay: cullcheck " "$work/out" | sed 's/^ *replay: cullcheck //')
+  if [ -z "$miss" ] || [ -z "$replay" ]; then fail "$what: no violation with a replay line"; return; fi
+  case "$replay" in *"$must"*) pass ;; *) fail "$what: the replay lacks '$must': $replay" ;; esac
+  case "$replay" in gate*) out=(-o "$work/replay.json") ;; esac
+  eval "\"$cc\" $replay \"\${out[@]}\"" >"$work/replay.out" 2>"$work/replay.err"
+  got=$?
+  [ "$got" -eq 1 ] && pass || { fail "$what: the replay exits $got, not 1: cullcheck $replay"; sed 's/^/  | /' "$work/replay.err" | head -3; }
+  [ "$(first_miss "$work/replay.out")" = "$miss" ] && pass || fail "$what: the replay's first miss is '$(first_miss "$work/replay.out")', not '$miss'"
+}
 # A built-in method wrapped as a subject passes, with the PVS of the same method in-process at every frame.
 expect_exit 0 "gate: built-in method over the protocol" "$cc" gate "${small[@]}" "${walk[@]}" \
   --subject "$subjects/builtin_subject" --method oh_os_conservative -o "$work/g.json" --junit "$work/g.xml"
@@ -181,13 +201,8 @@ expect_exit 1 "gate: a subject that culls what is visible" "$cc" gate "${small[@
   -o "$work/g.json" --junit "$work/g.xml"
 grep -q "culled object .* at frame 4" "$work/out" && pass || fail "gate: the miss does not name frame 4"
 grep -q '<failure message="culled' "$work/g.xml" && pass || fail "gate: JUnit lacks the failure"
-replay=$(grep -m1 "replay: cullcheck gate" "$work/out" | sed 's/^ *replay: cullcheck //')
-if [ -n "$replay" ]; then
-  eval "\"$cc\" $replay -o \"$work/replay.json\"" >/dev/null 2>&1
-  [ $? -eq 1 ] && pass || fail "gate: the replay line does not reproduce the miss"
-else
-  fail "gate: no replay line"
-fi
+[ "$(first_miss "$work/out")" = "subject:misbehaving-cull-all 2 4" ] && pass || fail "gate: cull-all 4: first miss '$(first_miss "$work/out")'"
+expect_replay_fails_the_same "gate: a subject that culls what is visible" "--frame 4"
 # Subjects that crash, hang or lie: exit 2, one line naming the frame and the fault, the report of
 # the frames before it written.
 for case in "crash 3|crashed|3" "segfault 2|signal 11|2" "hang 1|timed out|1" "garbage 2|garbage|2" \
@@ -247,6 +262,141 @@ expect_exit 0 "gate reads a .glb scene" "$cc" gate --scene "$work/op.glb" --came
   --method frustum -o "$work/glb.json"
 [ "$(json_field "$work/glb.json" "d['scene']['mesh_count'] > 0 and d['runs'][1]['frames_pvs_equal_to']['frustum'] == 1")" = True ] \
   && pass || fail "gate --scene .glb: meshes lost, or the subject differs from frustum culling"
+
+# ---- World and scene-local coordinates (core/coordinates.hpp) --------------------------------
+# The small city moved 5,000 km east and 3,000 km north is rebased on load (origin [5000001,
+# 3000000]: the whole-metre centre). Its walk in world coordinates, said by the file, by
+# --coordinates or relative to another origin, checks exactly the cameras of the scene-local walk;
+# read as local (a file that does not say) it would see nothing, so it is refused, not passed.
+"$cc" generate "${small[@]}" -o "$work/near.json" --path-output "$work/near-walk.json" --path-params '{"frames":8}' >/dev/null
+python3 - "$work" <<'EOF'
+import json, sys
+w = sys.argv[1] + "/"
+s = json.load(open(w + "near.json"))
+for b in s["buildings"]:
+    b["footprint"] = [[x + 5000000, y + 3000000] for x, y in b["footprint"]]
+json.dump(s, open(w + "far.json", "w"))
+p = json.load(open(w + "near-walk.json"))
+relative = dict(p, origin=[5000000, 3000000])  # local to another origin
+json.dump(relative, open(w + "far-relative.json", "w"))
+for f in p["frames"]:
+    f["position"][0] += 5000000
+    f["position"][1] += 3000000
+del p["coordinates"], p["origin"]
+json.dump(p, open(w + "far-world-undeclared.json", "w"))
+json.dump(dict(p, coordinates="world"), open(w + "far-world.json", "w"))
+EOF
+far=(--scene "$work/far.json")
+"$cc" generate "${far[@]}" --path "$work/far-world.json" -o "$work/far-again.json" --path-output "$work/far-local.json" >/dev/null
+[ "$(json_field "$work/far-local.json" "d['coordinates'], d['origin'], d['frames'][0]['position'][:2]")" = \
+  "local [5000001.0, 3000000.0] [-1.0, 18.082906308583915]" ] && pass || fail "generate: the world walk is not written scene-local with its origin"
+expect_exit 0 "gate: world walk on a rebased scene" "$cc" gate "${far[@]}" --path "$work/far-world.json" --method frustum,oh_os_conservative \
+  --subject "$subjects/minimal_subject" -o "$work/fw.json"
+grep -q "^coordinates: scene-local metres, world = local + origin \[5000001.0, 3000000.0\]; .*far-world.json given in world coordinates (said by the file), converted to scene-local" \
+  "$work/out" && pass || fail "gate: the output does not print the origin and the walk's frame"
+[ "$(json_field "$work/fw.json" "d['scene']['origin'], d['path']['coordinates']['given'], d['path']['coordinates']['converted_to_local'], d['runs'][2]['frames_pvs_equal_to']['frustum'], d['runs'][0]['witnessed_mean']")" = \
+  "[5000001.0, 3000000.0] world True 8 5.0" ] && pass || fail "gate: report.json of the world walk (origin, frame, subject = frustum, something seen)"
+expect_exit 0 "gate: the same walk scene-local" "$cc" gate "${far[@]}" --path "$work/far-local.json" --method frustum,oh_os_conservative \
+  --subject "$subjects/minimal_subject" -o "$work/fl.json"
+strip_run() { json_field "$1" "[{k: v for k, v in r.items() if 'ms' not in k and 'seconds' not in k and k != 'protocol'} for r in d['runs']], d['oracle']['rays_cast']"; }
+[ "$(strip_run "$work/fw.json")" = "$(strip_run "$work/fl.json")" ] && pass || fail "gate: the world walk and the local walk gave different runs"
+# Per frame, the same PVS whichever way the frame is said.
+"$cc" cull "${far[@]}" --path "$work/far-local.json" --method oh_os_conservative | sed 's/"cull_ms":[0-9.e-]*//' >"$work/cl.txt"
+for how in "far-world.json" "far-world-undeclared.json --coordinates world" "far-relative.json"; do
+  eval "\"$cc\" cull \"\${far[@]}\" --method oh_os_conservative --path \"$work/\"$how" | sed 's/"cull_ms":[0-9.e-]*//' >"$work/cw.txt"
+  [ "$(wc -l <"$work/cw.txt")" -eq 8 ] && cmp -s "$work/cl.txt" "$work/cw.txt" && pass || fail "cull --path $how: not the local walk's PVSs"
+done
+# Read as local, the world walk lies 5,000 km from the scene: refused (exit 2), naming the file,
+# the first eye, the bounds and the origin. (Before, a subject that culls everything passed here.)
+expect_exit 2 "gate: world walk read as local" "$cc" gate "${far[@]}" --path "$work/far-world-undeclared.json" \
+  --subject "$misbehaving cull-all 0" -o "$work/m.json"
+expect_error_names "gate: world walk read as local" \
+  "far-world-undeclared.json: field 'frames\[0\].position': every eye of the path (8 frames) lies outside the scene's plan bounds grown by 1000.0 m, so it would see nothing: the first is at \[5000000.0, 3000018.08290630[0-9]*, 1.7\] scene-local, the bounds are x \[-85.6[0-9]*, 85.5[0-9]*\], y \[-85.7[0-9]*, 85.9[0-9]*\] scene-local, the origin is \[5000001.0, 3000000.0\]"
+# Said to be world, the same subject is caught: exit 1, and its replay (which keeps
+# --coordinates) fails again at the same frame with the same object.
+expect_exit 1 "gate: culling everything on the world walk" "$cc" gate "${far[@]}" --path "$work/far-world-undeclared.json" --coordinates world \
+  --subject "$misbehaving cull-all 0" -o "$work/m.json"
+expect_replay_fails_the_same "gate: culling everything on the world walk" "--coordinates world --frame 0"
+expect_exit 2 "gate: file and flag disagree" "$cc" gate "${far[@]}" --path "$work/far-world.json" --coordinates local --method frustum
+expect_error_names "gate: file and flag disagree" "far-world.json: field 'coordinates': says world but --coordinates says local"
+expect_exit 2 "gate: --coordinates on a generated path" "$cc" gate "${far[@]}" --coordinates world --method frustum
+expect_error_names "gate: --coordinates on a generated path" "generated paths are scene-local"
+# One camera: world when it says so (the walk's first eye), refused when it does not.
+world_eye='{"position":[5000000,3000018.082906308583915,1.7],"yaw":-1.4,"coordinates":"world"}'
+expect_exit 0 "cull: a world camera" "$cc" cull "${far[@]}" --method frustum --camera "$world_eye"
+grep -q '"pvs_size":[1-9]' "$work/out" && pass || fail "cull: a world camera sees nothing"
+expect_exit 2 "cull: a world camera read as local" "$cc" cull "${far[@]}" --method frustum --camera "${world_eye/,\"coordinates\":\"world\"/}"
+expect_error_names "cull: a world camera read as local" "^cullcheck: --camera: field 'position': the eye lies outside"
+expect_exit 2 "verify: a world --camera and --coordinates local" "$cc" verify "${far[@]}" --method frustum --camera "$world_eye" --coordinates local
+expect_error_names "verify: a world --camera and --coordinates local" "says world but --coordinates says local"
+
+# ---- Every way the gate fails (README "Exit codes") --------------------------------------------
+# Exit 1 when a conservative culler misses, whatever form it takes: each miss below is pinned
+# (the first violation printed: who, which object, which frame), and the replay line printed
+# under it must fail again the same way on its own.
+# A recorded file that drops one visible object (building 6, seen at frame 2) from one frame.
+python3 - "$work" <<'EOF'
+import json, sys
+w = sys.argv[1] + "/"
+lines = open(w + "rec.jsonl").read().splitlines()
+frame = json.loads(lines[2])
+assert frame["frame"] == 2 and 6 in frame["ids"], frame
+frame["ids"].remove(6)
+lines[2] = json.dumps(frame)
+open(w + "rec-drop.jsonl", "w").write("\n".join(lines) + "\n")
+EOF
+expect_exit 1 "gate --pvs without one visible object" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec-drop.jsonl" \
+  -o "$work/r.json"
+[ "$(first_miss "$work/out") $(grep -c '^violation:' "$work/out")" = "recorded:rec-drop.jsonl 6 2 1" ] && pass \
+  || fail "gate --pvs: expected exactly one miss, building 6 at frame 2; got '$(first_miss "$work/out")'"
+expect_replay_fails_the_same "gate --pvs without one visible object" "--frame 2 --pvs "
+# One camera's visible set without one visible object (building 9, frustum culling keeps it).
+"$cc" cull --scene "$work/s.json" --method frustum --camera "$camera" >"$work/cam.txt"
+ids=$(python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['pvs']))" "$work/cam.txt")
+expect_exit 0 "gate --visible: frustum culling's set" "$cc" gate --scene "$work/s.json" --camera "$camera" --visible "$ids" -o "$work/r.json"
+ids_less=$(python3 -c "import json,sys; v=json.loads(sys.argv[1]); v.remove(9); print(json.dumps(v))" "$ids")
+expect_exit 1 "gate --visible without one visible object" "$cc" gate --scene "$work/s.json" --camera "$camera" --visible "$ids_less" -o "$work/r.json"
+[ "$(first_miss "$work/out")" = "recorded:visible 9 0" ] && pass || fail "gate --visible: expected the miss of building 9, got '$(first_miss "$work/out")'"
+expect_replay_fails_the_same "gate --visible without one visible object" "--visible '"
+# Subjects handed the right scene but reading it wrong: every box 40 m east of where it is (an
+# off-by-a-block offset); the scene-local boxes taken for world ones (moved by the origin) on the
+# far scene; the boxes of another export of the city, whose ids run the other way.
+expect_exit 1 "gate: a subject that shifts the boxes" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving shift 40" -o "$work/m.json"
+[ "$(first_miss "$work/out")" = "subject:misbehaving-shift 7 0" ] && pass || fail "gate: shift 40: first miss '$(first_miss "$work/out")'"
+expect_replay_fails_the_same "gate: a subject that shifts the boxes" "--frame 0"
+expect_exit 1 "gate: a subject that adds the origin" "$cc" gate "${far[@]}" --path "$work/far-world.json" --subject "$misbehaving shift origin" \
+  -o "$work/m.json"
+[ "$(first_miss "$work/out")" = "subject:misbehaving-shift 2 0" ] && pass || fail "gate: shift origin: first miss '$(first_miss "$work/out")'"
+expect_replay_fails_the_same "gate: a subject that adds the origin" "--path '$work/far-world.json' --frame 0"
+python3 -c "
+import json, sys
+s = json.load(open(sys.argv[1]))
+ids = sorted(b['id'] for b in s['buildings'])
+for b in s['buildings']:
+    b['id'] = ids[-1 - ids.index(b['id'])]
+json.dump(s, open(sys.argv[2], 'w'))" "$work/near.json" "$work/renumbered.json"
+expect_exit 1 "gate: a subject that reads another scene" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving scene $work/renumbered.json" \
+  -o "$work/m.json"
+[ "$(first_miss "$work/out")" = "subject:misbehaving-scene 2 0" ] && pass || fail "gate: another scene: first miss '$(first_miss "$work/out")'"
+expect_replay_fails_the_same "gate: a subject that reads another scene" "--frame 0"
+# Exit 2 when the gate cannot run: an unusable TMPDIR is named (it was exit 3).
+TMPDIR="$work/no-such-dir" expect_exit 2 "gate: unusable TMPDIR" "$cc" gate "${small[@]}" --subject "$subjects/minimal_subject" -o "$work/m.json"
+expect_error_names "gate: unusable TMPDIR" "TMPDIR $work/no-such-dir: field '(folder)': cannot hold a temporary folder"
+# Exit 3 when no verdict was reached: out of memory under a 500 MB address-space limit (the city
+# of 6,000,000 buildings needs gigabytes, the small one is generated within it; the gate fails
+# while generating, before the oracle's threads exist), and the report already there is left as
+# it was. Sanitizer builds reserve terabytes of shadow memory and cannot run under ulimit -v, so
+# they skip it.
+if grep -aq -e __asan_init -e __tsan_init -e __msan_init -e AddressSanitizer -e ThreadSanitizer "$cc"; then
+  echo "cli_test: skipped the out-of-memory case (sanitizer build)"
+else
+  echo '{"kept":true}' >"$work/kept.json"
+  expect_exit 0 "generate within 500 MB" bash -c 'ulimit -v 500000 && exec "$@"' _ "$cc" generate "${small[@]}" -o "$work/m.json"
+  expect_exit 3 "gate out of memory" bash -c 'ulimit -v 500000 && exec "$@"' _ "$cc" gate --generator manhattan \
+    --params '{"blocks_x":1000,"blocks_y":1000}' --method frustum -o "$work/kept.json"
+  expect_error_names "gate out of memory" "^cullcheck: internal error: out of memory (std::bad_alloc): no verdict was reached$"
+  [ "$(cat "$work/kept.json")" = '{"kept":true}' ] && pass || fail "gate out of memory: the report already there was changed"
+fi
 
 # ---- Fuzzing an outside program ----------------------------------------------------------------
 # The buggy example culler is found and shrunk by the fuzzer on its own; its counterexample

@@ -106,6 +106,15 @@ nlohmann::json build_report(const ReportInputs& in) {
                     {"parameters", json::parse(in.path_parameters_json)},
                     {"frames", in.path->frames.size()},
                     {"frames_per_second", in.path->frames_per_second}};
+  if (in.coordinates) {  // cameras are checked scene-local; this says what the input was
+    const CoordinateConversion& c = *in.coordinates;
+    report["path"]["coordinates"] = {{"given", frame_name(c.given)},
+                                     {"decided_by", c.decided_by},
+                                     {"converted_to_local", c.moved},
+                                     {"rounding_m", c.rounding_m},
+                                     {"origin", {c.origin.x, c.origin.y}}};
+    if (c.declared_origin) report["path"]["coordinates"]["declared_origin"] = {c.declared_origin->x, c.declared_origin->y};
+  }
   const OracleSummary& o = v.oracle;
   json density;
   oracle::to_json(density, o.density);

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/camera_path.hpp"
+#include "core/coordinates.hpp"
 #include "core/scene.hpp"
 #include "engine/method.hpp"
 #include "reports/claims.hpp"
@@ -25,6 +27,7 @@ struct ReportInputs {
   SceneSource source;
   const CameraPath* path = nullptr;
   std::string path_parameters_json = "{}";
+  std::optional<CoordinateConversion> coordinates;  // the frame the path was given in (path.coordinates)
   MethodOptions method_options;
   const PathVerification* verification = nullptr;
   std::vector<ClaimCheck> claims;

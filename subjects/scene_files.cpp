@@ -22,7 +22,10 @@ WorkDir::WorkDir(const std::string& path, bool keep) {
   }
   const char* tmp = std::getenv("TMPDIR");
   std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/cullcheck-XXXXXX";
-  if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder under " + pattern);
+  // An unusable TMPDIR is the environment's fault, like an unwritable --output: bad input, not a bug.
+  if (!::mkdtemp(pattern.data()))
+    throw InputError("TMPDIR " + std::string(tmp && *tmp ? tmp : "/tmp"), "(folder)",
+                     "cannot hold a temporary folder (give --work-dir DIR, or a writable TMPDIR)");
   path_ = pattern;
   remove_ = !keep;
 }

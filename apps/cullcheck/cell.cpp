@@ -3,6 +3,7 @@
 // --nodes, also its PVSn (VbAoI), and with --to, a line of sight to an avatar checked against it.
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
@@ -21,6 +22,7 @@ Runner add_cell(CLI::App& app) {
     SceneFlags scene;
     MethodFlags tuning;
     SamplingFlags oracle_sampling;
+    CoordinateFlags coordinates;
     std::string method = "shrink_adjustable_conservative", ring, sampling = "boundary", from;
     std::int64_t cell = -1;
     double epsilon = 1.4142135623730951, eye_height = 1.7;
@@ -53,6 +55,7 @@ Runner add_cell(CLI::App& app) {
   sub->add_option("--eye-height", f->eye_height, "Eye height (m) of every eye in the cell")->capture_default_str();
   sub->add_flag("--no-carry", f->no_carry, "Test every building at every sample (no decisions carried between samples)");
   sub->add_option("--from", f->from, "A viewpoint (camera JSON) to check the cell's PVS from with the oracle");
+  f->coordinates.add(*sub, "--from (--ring and --to are scene-local)");
   sub->add_flag("--nodes", f->nodes,
                 "Also the cell's PVSn (VbAoI, thesis ch. 5.1): the scene's navigable regions, extruded to eye height, "
                 "that the method does not hide (raw: before the graph makes PVSn symmetric)");
@@ -63,6 +66,8 @@ Runner add_cell(CLI::App& app) {
       ->expected(2);
   return [f] {
     const Scene scene = f->scene.source.load();
+    std::optional<Camera> from;
+    if (!f->from.empty()) from = f->coordinates.camera(scene, f->from, "--from");
     ViewCell view_cell{{}, f->eye_height};
     if ((f->cell >= 0) == !f->ring.empty())
       throw InputError("cell", "--cell/--ring", "give exactly one of --cell ID and --ring POLYGON");
@@ -93,13 +98,13 @@ Runner add_cell(CLI::App& app) {
                           {"pvs", r.pvs},               {"pvs_size", r.pvs.size()},
                           {"cull_ms", r.stats.cull_ms}, {"buildings_tested", r.stats.buildings_tested},
                           {"accepted_untested", r.stats.items_skipped}};
-    int exit_code = check_from(scene, f->from, f->oracle_sampling.sampling, r.pvs, *method, out);
+    int exit_code = check_from(scene, from, f->oracle_sampling.sampling, r.pvs, *method, out);
     if (f->nodes) {
       out["pvs_n"] = r.passive;
       out["pvs_n_size"] = r.passive.size();
     }
     if (!f->to.empty()) {
-      const Vec3 eye = camera_from_json_text(f->from, "from").position;
+      const Vec3 eye = from->position;
       const Vec3 avatar{f->to[0], f->to[1], f->eye_height};
       const std::int64_t node = locate_region(regions, {avatar.x, avatar.y});
       const bool sight = oracle::RayOracle(scene).line_of_sight(eye, avatar);

@@ -13,6 +13,7 @@ Runner add_cull(CLI::App& app) {
   struct Flags {
     SceneFlags scene;
     MethodFlags tuning;
+    CoordinateFlags coordinates;
     std::string method = "oh_os_conservative", camera, path;
   };
   auto f = std::make_shared<Flags>();
@@ -20,9 +21,10 @@ Runner add_cull(CLI::App& app) {
   f->scene.add(*sub);
   f->tuning.add(*sub);
   sub->add_option("--method", f->method, "Engine method")->capture_default_str();
-  auto* camera = sub->add_option("--camera", f->camera, "Camera as JSON (scene-local coordinates)");
+  auto* camera = sub->add_option("--camera", f->camera, "Camera as JSON (see --coordinates)");
   auto* path = sub->add_option("--path", f->path, "Camera path file: prints one JSON line per frame");
   camera->excludes(path);
+  f->coordinates.add(*sub, "--camera and --path");
   return [f] {
     const Scene scene = f->scene.source.load();
     auto method = make_method(f->method, scene, f->tuning.options);
@@ -30,9 +32,11 @@ Runner add_cull(CLI::App& app) {
       throw InputError("command line", "camera", "give a camera (--camera JSON) or a path (--path FILE)");
     std::vector<Camera> cameras;
     if (!f->path.empty()) {
-      cameras = path_from_json_text(read_text_file(f->path)).frames;
+      CameraPath path = read_path_file(f->path);
+      f->coordinates.localise(path, scene, f->path);
+      cameras = std::move(path.frames);
     } else {
-      cameras.push_back(camera_from_json_text(f->camera));
+      cameras.push_back(f->coordinates.camera(scene, f->camera, "--camera"));
     }
     for (std::size_t frame = 0; frame < cameras.size(); ++frame) {
       if (const std::string why = method->unsupported_camera(cameras[frame]); !why.empty())

@@ -33,30 +33,80 @@ void SceneFlags::add(CLI::App& app) {
       ->type_name("y|z");
 }
 
+void CoordinateFlags::add(CLI::App& app, const std::string& applies_to) {
+  app.add_option("--coordinates", frame,
+                 "Frame of " + applies_to +
+                     " JSON that does not say its own (a file's \"coordinates\": \"world\"|\"local\" is read as it "
+                     "says; a flag that contradicts it is an error): local = scene-local metres, the default, as "
+                     "cullcheck writes them; world = local + the scene's origin (far scenes are rebased on load; the "
+                     "origin is printed). An input whose every eye lies outside the scene's bounds grown by "
+                     "max(1 km, its size) is refused")
+      ->check(CLI::IsMember({"world", "local"}).description(""))
+      ->type_name("world|local");
+}
+
+std::optional<CoordinateFrame> CoordinateFlags::fallback() const {
+  if (frame.empty()) return std::nullopt;
+  return parse_coordinate_frame(frame);
+}
+
+CoordinateConversion CoordinateFlags::localise(CameraPath& path, const Scene& scene, const std::string& file) const {
+  CoordinateConversion how = to_scene_local(path, scene, fallback(), file);
+  require_an_eye_near_the_scene(path, scene, how, file);
+  return how;
+}
+
+Camera CoordinateFlags::camera(const Scene& scene, const std::string& json, const std::string& flag, CoordinateConversion* how) const {
+  CameraPath one = single_camera_from_json_text(json, flag);
+  const CoordinateConversion c = localise(one, scene, flag);
+  if (how) *how = c;
+  return one.frames.front();
+}
+
+std::string CoordinateFlags::replay_flag() const { return frame.empty() ? "" : " --coordinates " + frame; }
+
 void PathFlags::add(CLI::App& app, int default_frames) {
   params = nlohmann::json{{"frames", default_frames}}.dump();
   app.add_option("--path-kind", kind, "Camera path generator (street_walk, fly_through, moves)")->capture_default_str();
   app.add_option("--path-seed", seed, "Camera path seed")->capture_default_str();
   app.add_option("--path-params", params, "Camera path parameters as JSON")->capture_default_str();
-  app.add_option("--path", file, "Read the camera path from this JSON file instead");
+  app.add_option("--path", file, "Read the camera path from this JSON file instead (see --coordinates)");
+  coordinates.add(app, "--path and --camera");
 }
 
 std::string PathFlags::replay_flags() const {
-  if (!file.empty()) return "--path " + shell_quote(file);
+  if (!file.empty()) return "--path " + shell_quote(file) + coordinates.replay_flag();
   return "--path-kind " + kind + " --path-seed " + std::to_string(seed) + " --path-params " + shell_quote(params);
 }
 
-CameraPath PathFlags::load(const Scene& scene) const {
-  if (!file.empty()) return path_from_json_text(read_text_file(file));
-  return generators::make_camera_path(kind, scene, seed, parse_json_flag(params, "path-params"));
+CameraPath PathFlags::load(const Scene& scene, CoordinateConversion* how) const {
+  if (!file.empty()) {
+    CameraPath path = read_path_file(file);
+    const CoordinateConversion c = coordinates.localise(path, scene, file);
+    if (how) *how = c;
+    return path;
+  }
+  if (!coordinates.frame.empty())
+    throw InputError("command line", "--coordinates", "applies to cameras read from JSON (--path, --camera); generated paths are scene-local");
+  CameraPath path = generators::make_camera_path(kind, scene, seed, parse_json_flag(params, "path-params"));
+  path.coordinates = CoordinateFrame::local;
+  path.origin = scene.origin;
+  if (how) *how = CoordinateConversion{CoordinateFrame::local, "generator", scene.origin, std::nullopt, false};
+  return path;
 }
 
-CameraPath PathFlags::load(const Scene& scene, const std::string& camera_json) const {
-  if (camera_json.empty()) return load(scene);
-  CameraPath path;
-  path.kind = "single_camera";
-  path.frames.push_back(camera_from_json_text(camera_json));
+CameraPath PathFlags::load(const Scene& scene, const std::string& camera_json, CoordinateConversion* how) const {
+  if (camera_json.empty()) return load(scene, how);
+  CameraPath path = single_camera_from_json_text(camera_json, "--camera");
+  const CoordinateConversion c = coordinates.localise(path, scene, "--camera");
+  if (how) *how = c;
   return path;
+}
+
+std::string PathFlags::source_name(const std::string& camera_json) const {
+  if (!camera_json.empty()) return "--camera";
+  if (!file.empty()) return file;
+  return "the " + kind + " path";
 }
 
 nlohmann::json parse_json_flag(const std::string& text, const std::string& field) {
@@ -201,12 +251,12 @@ nlohmann::json pvs_json(const CullResult& r) {
           {"cull_ms", r.stats.cull_ms}};
 }
 
-int check_from(const Scene& scene, const std::string& from_json, const oracle::SamplingOptions& sampling,
+int check_from(const Scene& scene, const std::optional<Camera>& from, const oracle::SamplingOptions& sampling,
                const std::vector<ObjectId>& pvs, const RegionCullingMethod& method, nlohmann::json& out) {
-  if (from_json.empty()) return 0;
+  if (!from) return 0;
   oracle::OracleOptions options;
   options.sampling = sampling;
-  const oracle::OracleAnswer seen = oracle::Oracle(scene).visible_set(camera_from_json_text(from_json, "from"), options);
+  const oracle::OracleAnswer seen = oracle::Oracle(scene).visible_set(*from, options);
   const std::vector<ObjectId> missed = missing_from(seen.visible, pvs);
   out["from"] = {{"oracle_model", seen.model}, {"witnessed", seen.visible.size()}, {"missed", missed}};
   return !missed.empty() && method.claims_conservative() ? kExitGateFailed : 0;

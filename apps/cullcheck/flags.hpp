@@ -7,10 +7,12 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/camera_path.hpp"
+#include "core/coordinates.hpp"
 #include "engine/method.hpp"
 #include "oracle/sampling.hpp"
 #include "reports/scene_source.hpp"
@@ -28,17 +30,38 @@ struct SceneFlags {
   void add(CLI::App& app);
 };
 
+// --coordinates world|local: the frame of camera and path JSON that does not say its own
+// (core/coordinates.hpp; files that say are read as they say, and a flag that contradicts them
+// is an error). Without it such files are scene-local, as cullcheck writes them.
+struct CoordinateFlags {
+  std::string frame;  // "", "local" or "world"
+  void add(CLI::App& app, const std::string& applies_to);
+  std::optional<CoordinateFrame> fallback() const;
+  // `path` (read from `file`, or "--camera") into scene-local coordinates, refused when every eye
+  // lies far outside the scene (require_an_eye_near_the_scene).
+  CoordinateConversion localise(CameraPath& path, const Scene& scene, const std::string& file) const;
+  // One camera given as JSON on the command line (`flag`: --camera, --from), scene-local.
+  Camera camera(const Scene& scene, const std::string& json, const std::string& flag, CoordinateConversion* how = nullptr) const;
+  // " --coordinates world" when given, for replays of a path file.
+  std::string replay_flag() const;
+};
+
 struct PathFlags {
   std::string kind = "street_walk";
   std::uint64_t seed = 1;
   std::string params = "{}";
   std::string file;
+  CoordinateFlags coordinates;
   void add(CLI::App& app, int default_frames);
   // The flags that rebuild this path, for replay commands.
   std::string replay_flags() const;
-  CameraPath load(const Scene& scene) const;
+  // The path file (scene-local after `coordinates`) or the generated path; `how` says which
+  // frame it was given in.
+  CameraPath load(const Scene& scene, CoordinateConversion* how = nullptr) const;
   // One camera (`--camera` JSON) as a one-frame path when given, else the path.
-  CameraPath load(const Scene& scene, const std::string& camera_json) const;
+  CameraPath load(const Scene& scene, const std::string& camera_json, CoordinateConversion* how = nullptr) const;
+  // The name of where the cameras came from, for coordinates_line.
+  std::string source_name(const std::string& camera_json) const;
 };
 
 // Parses a JSON flag value, raising InputError naming the flag.
@@ -81,7 +104,7 @@ nlohmann::json pvs_json(const CullResult& r);
 // `region --from` and `cell --from`: the oracle's view from one eye (camera JSON) against a
 // from-region PVS, into out["from"]; the gate's exit code when a method that claims to be
 // conservative missed what it saw, else 0 (also when no eye was given).
-int check_from(const Scene& scene, const std::string& from_json, const oracle::SamplingOptions& sampling,
+int check_from(const Scene& scene, const std::optional<Camera>& from, const oracle::SamplingOptions& sampling,
                const std::vector<ObjectId>& pvs, const RegionCullingMethod& method, nlohmann::json& out);
 
 }  // namespace cullcheck::cli

@@ -60,7 +60,8 @@ Runner add_gate(CLI::App& app) {
   sub->add_option("--junit", f->junit, "Also write the checks as JUnit XML (one test case per method and check)");
   return [f] {
     const Scene scene = f->scene.source.load();
-    CameraPath path = f->path.load(scene, f->camera);
+    CoordinateConversion coordinates;
+    CameraPath path = f->path.load(scene, f->camera, &coordinates);
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.oracle_stride = f->oracle_stride;
@@ -83,6 +84,7 @@ Runner add_gate(CLI::App& app) {
     in.source = f->scene.source;
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() && f->camera.empty() ? f->path.params : "{}";
+    in.coordinates = coordinates;
     in.verification = &v;
     in.claims = subject_claims(v);
     if (f->max_overestimation > 0.0) in.thresholds.max_overestimation = f->max_overestimation;
@@ -91,7 +93,7 @@ Runner add_gate(CLI::App& app) {
     // Bytes that are not UTF-8 (a subject's garbage) are replaced rather than fail the report.
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
-    std::cout << summary_table(v);
+    std::cout << coordinates_line(coordinates, f->path.source_name(f->camera)) << "\n" << summary_table(v);
     for (const MethodRun& r : v.runs) {
       for (const Violation& x : r.violations)
         std::cout << "violation: " << r.method << " culled object " << x.building << " at frame " << x.frame << " (oracle "

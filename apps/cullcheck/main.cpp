@@ -5,10 +5,11 @@
 // culled something the oracle saw, or an approximate one exceeded its pixel budget); 2 bad input
 // (one line on stderr naming the object and field; an outside subject that crashes, hangs or
 // answers garbage is bad input too); 3 an internal error (a bug: please report it with the
-// command line).
+// command line), or cullcheck ran out of memory: either way no verdict was reached.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <new>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -50,6 +51,9 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "cullcheck: " << e.what() << "\n";
     return cli::kExitBadInput;
+  } catch (const std::bad_alloc& e) {  // no verdict either way; not a gate failure, not bad input
+    std::cerr << "cullcheck: internal error: out of memory (" << e.what() << "): no verdict was reached\n";
+    return cli::kExitInternalError;
   } catch (const std::exception& e) {
     std::cerr << "cullcheck: internal error: " << e.what() << "\n";
     return cli::kExitInternalError;

@@ -2,6 +2,7 @@
 // the oracle at that viewpoint.
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
@@ -15,6 +16,7 @@ Runner add_region(CLI::App& app) {
     SceneFlags scene;
     MethodFlags tuning;
     SamplingFlags sampling;
+    CoordinateFlags coordinates;
     std::string method = "shrink_adjustable_conservative", camera, from;
     double radius = 1.4142135623730951, turn = 0.0;
   };
@@ -29,10 +31,13 @@ Runner add_region(CLI::App& app) {
   sub->add_option("--radius", f->radius, "Disc radius (m)")->capture_default_str()->check(CLI::Range(0.0, 1e4));
   sub->add_option("--turn", f->turn, "Turn (rad) allowed")->capture_default_str()->check(CLI::Range(0.0, 1.5));
   sub->add_option("--from", f->from, "A viewpoint (camera JSON) of the region to check with the oracle");
+  f->coordinates.add(*sub, "--camera and --from");
   return [f] {
     const Scene scene = f->scene.source.load();
     auto method = make_region_method(f->method, scene, f->tuning.options);
-    const ViewRegion view_region{camera_from_json_text(f->camera), f->radius, f->turn};
+    const ViewRegion view_region{f->coordinates.camera(scene, f->camera, "--camera"), f->radius, f->turn};
+    std::optional<Camera> from;
+    if (!f->from.empty()) from = f->coordinates.camera(scene, f->from, "--from");
     if (view_region.camera.orthographic())
       throw InputError("camera", "projection", "a from-region PVS is for the eyes of a disc: give a perspective or 360-degree camera");
     const CullResult r = method->cull_region(view_region);
@@ -40,7 +45,7 @@ Runner add_region(CLI::App& app) {
     out["method"] = f->method;
     out["radius"] = f->radius;
     out["turn"] = f->turn;
-    const int exit_code = check_from(scene, f->from, f->sampling.sampling, r.pvs, *method, out);
+    const int exit_code = check_from(scene, from, f->sampling.sampling, r.pvs, *method, out);
     std::cout << out.dump() << "\n";
     return exit_code;
   };

@@ -132,7 +132,8 @@ Runner add_report(CLI::App& app) {
       f->vbaoi.options.graph.method_options = f->tuning.options;
       vbaoi_scene = f->vbaoi_city.load();
     }
-    const CameraPath path = f->path.load(scene);
+    CoordinateConversion coordinates;
+    const CameraPath path = f->path.load(scene, &coordinates);
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.oracle_stride = f->oracle_stride;
@@ -153,6 +154,7 @@ Runner add_report(CLI::App& app) {
     in.source = f->scene.source;
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
+    in.coordinates = coordinates;
     in.verification = &v;
     in.claims = subject_claims(v);
     for (ClaimCheck& c : check_shadow_elevation_rule(f->claim_options)) in.claims.push_back(std::move(c));
@@ -240,7 +242,7 @@ Runner add_report(CLI::App& app) {
       document["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
-    std::cout << summary_table(v);
+    std::cout << coordinates_line(coordinates, f->path.source_name("")) << "\n" << summary_table(v);
     for (const ClaimCheck& c : in.claims) {
       std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
                 << c.violations << " violations)\n";

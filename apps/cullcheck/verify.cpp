@@ -32,7 +32,8 @@ Runner add_verify(CLI::App& app) {
   return [f] {
     const Scene scene = f->scene.source.load();
     const std::vector<std::string> methods = parse_methods(f->methods);
-    CameraPath path = f->path.load(scene, f->camera);
+    CoordinateConversion coordinates;
+    CameraPath path = f->path.load(scene, f->camera, &coordinates);
     VerificationOptions options;
     options.oracle.sampling = f->sampling.sampling;
     options.max_replays = 10;
@@ -42,7 +43,7 @@ Runner add_verify(CLI::App& app) {
     options.region_on_tiling = f->regions.placement == "tiling";
     if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags();
     const PathVerification v = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
-    std::cout << summary_table(v);
+    std::cout << coordinates_line(coordinates, f->path.source_name(f->camera)) << "\n" << summary_table(v);
     for (const MethodRun& r : v.runs)
       for (const Violation& x : r.violations)
         std::cout << "violation: " << r.method << " culled building " << x.building << " at frame " << x.frame << " (oracle "
