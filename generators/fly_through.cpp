@@ -125,7 +125,12 @@ CameraPath fly_through(const Scene& scene, const FlyThroughParams& p, std::uint6
   auto unit = [](Vec2 v) { const double l = length(v); return l > 0 ? v * (1.0 / l) : Vec2{1, 0}; };
   const double needed = p.frames * p.cruise_speed / p.frames_per_second + 1.0;
   std::vector<Waypoint> waypoints{{random_point(), cruise + rng.uniform_real(0.0, p.rooftop_margin)}};
-  const PlanarRotation first = rotation_from_half_tangent(rng.uniform_real(-1, 1), static_cast<int>(rng.uniform_int(0, 3)));
+  // Drawn one at a time: a call's arguments are evaluated in an unspecified order (gcc right to
+  // left, clang left to right), so two draws as arguments gave a clang build another path for the
+  // same seed. gcc's order is kept: the quadrant first.
+  const int quadrant = static_cast<int>(rng.uniform_int(0, 3));
+  const double half_tangent = rng.uniform_real(-1, 1);
+  const PlanarRotation first = rotation_from_half_tangent(half_tangent, quadrant);
   Vec2 leg_dir{first.cos, first.sin};
   double chords = 0.0;
   while (chords < needed && waypoints.size() < 1'000'000) {

@@ -2,13 +2,22 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "core/errors.hpp"
 #include "oracle/roof_triangulation.hpp"
 
 namespace cullcheck::oracle {
 
+void check_merged_triangle_count(std::size_t triangles) {
+  if (triangles > kMaxMergedTriangles)
+    throw InputError("scene", "triangles",
+                     "has " + std::to_string(triangles) + " triangles; the ray oracle's one Embree mesh holds at most " +
+                         std::to_string(kMaxMergedTriangles) + " (three unshared 32-bit vertex indices each)");
+}
+
 TriangleMesh triangulate(const Scene& scene) {
+  check_merged_triangle_count(scene.triangle_count());
   TriangleMesh mesh;
   if (scene.object_count() > 0) {
     const Box3 box = scene.bounds();

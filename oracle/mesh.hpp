@@ -35,6 +35,13 @@ struct TriangleMesh {
   std::vector<std::vector<std::array<std::uint32_t, 3>>> roofs;
 };
 
+// Embree's index buffers are 32-bit and the merged mesh shares no vertex, so it holds at most
+// this many triangles (three vertex indices each, the largest 2^32 - 1).
+inline constexpr std::size_t kMaxMergedTriangles = 0xFFFFFFFFull / 3;  // 1,431,655,765
+// InputError("scene", "triangles") when a scene of `triangles` triangles would not fit: a larger
+// scene is refused, never given wrapped indices. triangulate() checks it first.
+void check_merged_triangle_count(std::size_t triangles);
+
 // Throws InputError naming the building when its footprint cannot be triangulated (not simple).
 TriangleMesh triangulate(const Scene& scene);
 

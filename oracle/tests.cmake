@@ -4,6 +4,7 @@ add_executable(oracle_test
   ${CMAKE_CURRENT_LIST_DIR}/tests/agreement_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/exact_2d_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/mesh_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/merged_mesh_limits_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/oracle_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/pixel_oracle_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/ray_oracle_test.cpp

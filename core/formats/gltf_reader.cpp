@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
@@ -147,6 +148,8 @@ struct Reader {
                  " (quantised positions, KHR_mesh_quantization, are not supported)");
     }
     const View v = view_of(index, 12, object, "POSITION");
+    if (v.count > kMaxMeshVertices)
+      fail(object, "accessors[" + std::to_string(index) + "] (POSITION).count", "exceeds the limit of 50,000,000 vertices per object");
     std::vector<Vec3> out(v.count);
     for (std::size_t k = 0; k < v.count; ++k) {
       float f[3];
@@ -216,7 +219,17 @@ struct Reader {
     }
     if (!prim.targets.empty()) report.notes.push_back(where + ": morph targets ignored (base positions used)");
 
+    // The limits before anything is allocated for them: a strip of 150,000,000 one-byte indices
+    // would otherwise build 1.8 GB of triangles only to refuse them.
+    const std::size_t corners = order.size();
+    const std::size_t new_triangles = prim.mode == TINYGLTF_MODE_TRIANGLES ? corners / 3 : (corners >= 3 ? corners - 2 : 0);
+    if (out.vertices.size() + local.size() > kMaxMeshVertices)
+      fail(object, "vertices", "exceeds the limit of 50,000,000 vertices per object");
+    if (out.triangles.size() + new_triangles > kMaxTrianglesPerObject)
+      fail(object, "triangles", "exceeds the limit of 100,000,000 triangles per object");
+
     std::vector<std::array<std::uint32_t, 3>> triangles;
+    triangles.reserve(new_triangles);
     if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
       if (order.size() % 3 != 0)
         fail(where, prim.indices >= 0 ? "accessors[" + std::to_string(prim.indices) + "] (indices).count" : "attributes.POSITION",
@@ -231,10 +244,9 @@ struct Reader {
       for (std::size_t k = 0; k + 2 < order.size(); ++k) triangles.push_back({order[k + 1], order[k + 2], order[0]});
     }
 
-    if (out.vertices.size() + local.size() > kMaxMeshVertices)
-      fail(object, "vertices", "exceeds the limit of 50,000,000 vertices per object");
-    if (out.triangles.size() + triangles.size() > kMaxTrianglesPerObject)
-      fail(object, "triangles", "exceeds the limit of 100,000,000 triangles per object");
+    // Merged instances and primitives are offset by the vertices before them; the limit above
+    // keeps base + index (both below it) within 32 bits.
+    static_assert(2 * kMaxMeshVertices <= std::numeric_limits<std::uint32_t>::max());
     const auto base = static_cast<std::uint32_t>(out.vertices.size());
     for (const Vec3& v : local) out.vertices.push_back(detail::y_up_to_z_up(apply(world, v)));
     // A mirroring transform turns faces inside out; swap two corners to keep them facing out.

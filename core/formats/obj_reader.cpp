@@ -6,8 +6,11 @@
 // scan of the `v` lines first refuses such files instead of loading a silently different scene,
 // and its strtod values (correctly rounded) replace tinyobjloader's when both saw the same
 // vertices. The same scan picks up the world origin our writer puts in a comment.
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
+#include <limits>
 #include <filesystem>
 #include <tiny_obj_loader.h>
 #include <type_traits>
@@ -31,17 +34,46 @@ struct VertexScan {
   std::optional<Vec2> origin;  // from our writer's comment
 };
 
-// Every `v x y z` line holds three finite numbers.
+// tinyobjloader reads face indices with atoi into an int: 4294967298 wraps to 2, a valid vertex,
+// so a face would silently use the wrong corner. Every number on an `f` line must fit: a vertex
+// index within the vertex limit, texture and normal indices within an int.
+void check_face_indices(const std::string& line, std::size_t line_no, const std::string& file) {
+  const std::string field = "line " + std::to_string(line_no) + " (f)";
+  const std::string text = line.substr(0, line.find('\0'));  // up to a NUL, as tinyobjloader reads it
+  for (std::size_t at = text.find_first_not_of(" \t"); at != std::string::npos; at = text.find_first_not_of(" \t", at)) {
+    const std::size_t token_end = std::min(text.find_first_of(" \t", at), text.size());
+    // v, v/vt, v//vn or v/vt/vn; a part that is not a number is left to tinyobjloader's parse.
+    for (int component = 0; at < token_end; ++component) {
+      const std::size_t part_end = std::min(text.find('/', at), token_end);
+      const std::string part = text.substr(at, part_end - at);
+      char* next = nullptr;
+      errno = 0;
+      const long long index = part.empty() ? 0 : std::strtoll(part.c_str(), &next, 10);
+      const long long limit = component == 0 ? static_cast<long long>(kMaxMeshVertices) : std::numeric_limits<int>::max();
+      if (!part.empty() && next != part.c_str() && (errno == ERANGE || index > limit || index < -limit))
+        throw InputError(file, field, std::string(component == 0 ? "vertex" : "texture or normal") + " index " + part +
+                                          " is out of range");
+      at = part_end + 1;
+    }
+    at = token_end;
+  }
+}
+
+// Every `v x y z` line holds three finite numbers. Lines end as tinyobjloader ends them (\n,
+// \r\n or a lone \r), so that both see the same `v` lines.
 VertexScan scan_vertex_lines(const std::string& text, const std::string& file) {
   VertexScan scan;
   std::optional<Vec2>& origin = scan.origin;
   std::size_t line_no = 0, vertices = 0;
   for (std::size_t at = 0; at < text.size();) {
-    std::size_t end = text.find('\n', at);
+    std::size_t end = text.find_first_of("\r\n", at);
     if (end == std::string::npos) end = text.size();
     ++line_no;
     std::size_t i = text.find_first_not_of(" \t", at);
-    if (i != std::string::npos && i + 1 < end && text[i] == 'v' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
+    if (i != std::string::npos && i >= end) i = std::string::npos;
+    if (i != std::string::npos && i + 1 < end && text[i] == 'f' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
+      check_face_indices(text.substr(i + 2, end - i - 2), line_no, file);
+    } else if (i != std::string::npos && i + 1 < end && text[i] == 'v' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
       const std::string line = text.substr(i + 2, end - i - 2);
       const char* p = line.c_str();
       for (int k = 0; k < 3; ++k) {
@@ -66,7 +98,7 @@ VertexScan scan_vertex_lines(const std::string& text, const std::string& file) {
       else
         throw InputError(file, "line " + std::to_string(line_no) + " (origin comment)", "must give two finite numbers");
     }
-    at = end + 1;
+    at = end + (end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n' ? 2 : 1);
   }
   return scan;
 }

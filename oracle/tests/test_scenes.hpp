@@ -141,9 +141,16 @@ inline RandomCity random_city(std::uint64_t seed) {
   }
   const double eye_z = uniform(1.5, 2.0);
   const int kind = int(seed % 3);
-  Camera camera = kind == 2 ? omni_camera({eye.x, eye.y, eye_z})
-                            : level_camera({eye.x, eye.y, eye_z}, uniform(0, kTwoPi), uniform(40, 120) * kDeg,
-                                           uniform(20, kind == 0 ? 60 : 90) * kDeg);
+  // The level camera's draws one at a time: a call's arguments are evaluated in an unspecified
+  // order (gcc right to left, clang left to right), and the city must not depend on the compiler.
+  // gcc's order is kept: vfov, hfov, yaw.
+  Camera camera = omni_camera({eye.x, eye.y, eye_z});
+  if (kind != 2) {
+    const double vfov = uniform(20, kind == 0 ? 60 : 90) * kDeg;
+    const double hfov = uniform(40, 120) * kDeg;
+    const double yaw = uniform(0, kTwoPi);
+    camera = level_camera({eye.x, eye.y, eye_z}, yaw, hfov, vfov);
+  }
   const double shared_height = uniform(15, 40);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const Box2& b = boxes[i];
