@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Mutation check of the oracle-based properties (README "Tests and replays", mutants).
+# Mutation check of the oracle-based properties (ci/mutants/README.md).
 #
 # Each patch in ci/mutants/patches/ weakens one step that a method's conservativeness rests on.
 # For each one this script applies it to the source tree (git apply), rebuilds only the targets
@@ -7,29 +7,34 @@
 # (RapidCheck properties that compare a PVS with the oracle, and `cullcheck fuzz` on the method
 # wrapped as an outside subject, which is all an outside subject gets), reverts it (git apply
 # -R, also on error or Ctrl-C), and prints mutant -> killed (by which check) or survived.
-# Checks run in order and stop at the first that fails; a mutant no check kills survives.
 #
-# Usage: ci/mutants/run.sh [-B BUILD_DIR] [MUTANT ...]    (default: every patch, build/)
+# Usage: ci/mutants/run.sh [-B BUILD_DIR] [-s base|all] [-a] [MUTANT ...]
+#   -B  build directory (default build/, configured)
+#   -s  which checks: base (those that were there before the mutation check) or all (default)
+#   -a  run every check of a mutant (default: stop at the first that kills it); the table then
+#       says which killed it, and the kill rate of the base checks alone is printed too
 # Exit 0 when every mutant is killed; 1 when one survived, a check erred (crash, timeout) or a
-# patch no longer applies (after a merge: refresh it against today's code, see README).
-# Each patch starts with "checks: GROUPS" (oh, dh, region: the check groups below) and "why:".
+# patch no longer applies (after a merge: refresh the patch against today's code).
+# Each patch starts with "checks: GROUPS" (the check groups below) and "why: ...".
 set -uo pipefail
 cd "$(dirname "$0")/../.."
-root=$PWD
-build=build
-while getopts "B:" opt; do
+build=build set=all every=0
+while getopts "B:s:a" opt; do
   case $opt in
     B) build=$OPTARG ;;
-    *) echo "usage: $0 [-B BUILD_DIR] [MUTANT ...]" >&2; exit 2 ;;
+    s) set=$OPTARG ;;
+    a) every=1 ;;
+    *) echo "usage: $0 [-B BUILD_DIR] [-s base|all] [-a] [MUTANT ...]" >&2; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
+case $set in base|all) ;; *) echo "-s takes base or all, not '$set'" >&2; exit 2 ;; esac
 patches=()
 if [ $# -eq 0 ]; then
   patches=(ci/mutants/patches/*.patch)
 else
   for m in "$@"; do
-    p=ci/mutants/patches/${m%.patch}.patch
+    p=ci/mutants/patches/$(basename "${m%.patch}").patch
     [ -f "$p" ] || { echo "no such mutant: $m (see ci/mutants/patches/)" >&2; exit 2; }
     patches+=("$p")
   done
@@ -40,30 +45,47 @@ unset RC_PARAMS
 check_timeout=${CULLCHECK_MUTANT_TIMEOUT:-900}   # seconds per check: a mutant may loop
 cc=$build/apps/cullcheck/cullcheck
 subject=$build/examples/subjects/builtin_subject
+tests=$build/properties
 scratch=$(mktemp -d)
 
-# The oracle-based checks, by group: "name|target|command".
+# The oracle-based checks, by group (the method a mutant weakens): "set|name|target|command".
+# Set "base": the properties and the fuzzer that were there before the mutation check;
+# "grazing": the hard cases written for it (properties/grazing_*_test.cpp), run first (fast).
+region_checks() {
+  cat <<CHECKS
+grazing|GrazingDiscs.$1ShrinkingHolds|grazing_region_test|$tests/grazing_region_test --gtest_filter=GrazingDiscs.$1ShrinkingHolds
+base|RegionShrinking.$1ShrinkingHoldsOverTheDisc|region_shrinking_test|$tests/region_shrinking_test --gtest_filter=RegionShrinking.$1ShrinkingHoldsOverTheDisc
+CHECKS
+}
 checks_of() {
   case $1 in
-    oh) cat <<EOF
-Conservativeness|conservativeness_test|$build/properties/conservativeness_test --gtest_filter=Conservativeness.ObjectSpace*
-fuzz(oh_os_conservative)|cullcheck builtin_subject|$cc fuzz --subject '$subject oh_os_conservative' --budget 100 --seed 1 --out $scratch/cex
-EOF
+    oh) cat <<CHECKS
+grazing|GrazingEyes.ObjectSpaceHorizon*|grazing_horizon_test|$tests/grazing_horizon_test --gtest_filter=GrazingEyes.ObjectSpaceHorizon*
+base|Conservativeness.ObjectSpace*|conservativeness_test|$tests/conservativeness_test --gtest_filter=Conservativeness.ObjectSpace*
+base|fuzz(oh_os_conservative)|cullcheck builtin_subject|$cc fuzz --subject '$subject oh_os_conservative' --budget 100 --seed 1 --out $scratch/cex
+CHECKS
       ;;
-    dh) cat <<EOF
-fuzz(delta_h_guarded)|cullcheck builtin_subject|$cc fuzz --subject '$subject delta_h_guarded' --budget 100 --seed 1 --out $scratch/cex
-EOF
+    dh) cat <<CHECKS
+grazing|GrazingEyes.GuardedDeltaHorizon*|grazing_delta_horizon_test|$tests/grazing_delta_horizon_test --gtest_filter=GrazingEyes.GuardedDeltaHorizon*
+base|fuzz(delta_h_guarded)|cullcheck builtin_subject|$cc fuzz --subject '$subject delta_h_guarded' --budget 100 --seed 1 --out $scratch/cex
+CHECKS
       ;;
-    region) cat <<EOF
-RegionShrinking.*HoldsOverTheDisc|region_shrinking_test|$build/properties/region_shrinking_test --gtest_filter=RegionShrinking.*HoldsOverTheDisc
-ViewCell.PvsHoldsFromEveryEyeInTheCell|view_cell_test|$build/properties/view_cell_test --gtest_filter=ViewCell.PvsHoldsFromEveryEyeInTheCell
-NavigationGraph.NodePvsHoldsForEveryEyeInTheCell|vbaoi_test|$build/properties/vbaoi_test --gtest_filter=NavigationGraph.NodePvsHoldsForEveryEyeInTheCell
-EOF
+    certified) region_checks Certified ;;
+    former) region_checks Former ;;
+    minkowski) region_checks Minkowski ;;
+    corrected) region_checks CorrectedAdjustable ;;
+    view_cell) cat <<CHECKS
+base|ViewCell.PvsHoldsFromEveryEyeInTheCell|view_cell_test|$tests/view_cell_test --gtest_filter=ViewCell.PvsHoldsFromEveryEyeInTheCell
+CHECKS
       ;;
     *) echo "unknown check group '$1'" >&2; return 1 ;;
   esac
 }
-groups_of() { sed -n 's/^checks: //p;/^diff /q' "$1"; }
+all_groups="oh dh certified former minkowski corrected view_cell"
+checks_for() {  # the checks of a patch's groups in the chosen set
+  local g
+  for g in $(sed -n 's/^checks: //p;/^diff /q' "$1"); do checks_of "$g"; done | { [ "$set" = all ] && cat || grep '^base|'; }
+}
 
 applied=""
 revert() {
@@ -77,10 +99,10 @@ trap cleanup EXIT
 trap 'echo "interrupted" >&2; exit 130' INT TERM
 
 # Every target any check needs, so the unmutated build is restored at the end.
-all_targets=$(for g in oh dh region; do checks_of $g | cut -d'|' -f2; done | tr ' ' '\n' | sort -u | tr '\n' ' ')
+all_targets=$(for g in $all_groups; do checks_of "$g" | cut -d'|' -f3; done | tr ' ' '\n' | sort -u | tr '\n' ' ')
 
 results=()
-killed=0 survived=0 stale=0 errors=0
+killed=0 survived=0 stale=0 errors=0 base_killed=0
 start_all=$SECONDS
 for p in "${patches[@]}"; do
   name=$(basename "$p" .patch)
@@ -92,9 +114,8 @@ for p in "${patches[@]}"; do
   fi
   t0=$SECONDS
   git apply "$p" && applied=$p
-  groups=$(groups_of "$p")
-  checks=$(for g in $groups; do checks_of "$g"; done)
-  targets=$(echo "$checks" | cut -d'|' -f2 | tr ' ' '\n' | sort -u | tr '\n' ' ')
+  checks=$(checks_for "$p")
+  targets=$(echo "$checks" | cut -d'|' -f3 | tr ' ' '\n' | sort -u | tr '\n' ' ')
   echo "== $name ($(sed -n 's/^why: //p' "$p")): building $targets"
   if ! cmake --build "$build" --target $targets -j2 >"$scratch/build.log" 2>&1; then
     tail -20 "$scratch/build.log"
@@ -103,8 +124,8 @@ for p in "${patches[@]}"; do
     revert
     continue
   fi
-  outcome=survived by="all checks passed"
-  while IFS='|' read -r check _ command; do
+  outcome=survived by="" base_kill=0
+  while IFS='|' read -r which check _ command; do
     [ -n "$check" ] || continue
     rm -rf "$scratch/cex"
     c0=$SECONDS
@@ -112,29 +133,32 @@ for p in "${patches[@]}"; do
     rc=$?
     echo "   $check: exit $rc in $((SECONDS - c0)) s"
     if [ $rc -eq 1 ]; then
-      outcome=killed by=$check
-      grep -m1 -E "replay:|Falsifiable|counterexample" "$scratch/check.log" | cut -c1-300 | sed 's/^/     /'
-      break
+      [ "$outcome" = error ] || outcome=killed
+      by="${by:+$by, }$check"
+      [ "$which" = base ] && base_kill=1
+      grep -m1 -E "replay:|FAILED after" "$scratch/check.log" | cut -c1-400 | sed 's/^/     /'
     elif [ $rc -ne 0 ]; then
-      outcome=error by="$check exit $rc"
+      outcome=error by="${by:+$by, }$check exit $rc"
       tail -5 "$scratch/check.log" | sed 's/^/     /'
-      break
     fi
+    [ $rc -ne 0 ] && [ $every -eq 0 ] && break
   done <<<"$checks"
   revert
   case $outcome in killed) killed=$((killed + 1)) ;; survived) survived=$((survived + 1)) ;; *) errors=$((errors + 1)) ;; esac
-  results+=("$name|$outcome|$by|$((SECONDS - t0))")
+  base_killed=$((base_killed + base_kill))
+  results+=("$name|$outcome|${by:-every check passed}|$((SECONDS - t0))")
 done
 
 echo "== restoring the unmutated build"
 cmake --build "$build" --target $all_targets -j2 >"$scratch/build.log" 2>&1 || { tail -20 "$scratch/build.log"; errors=$((errors + 1)); }
 
 echo
-printf '%-40s %-9s %-52s %s\n' mutant outcome "killed by" seconds
+printf '%-38s %-9s %-7s %s\n' mutant outcome seconds "killed by"
 for r in "${results[@]}"; do
   IFS='|' read -r n o b s <<<"$r"
-  printf '%-40s %-9s %-52s %s\n' "$n" "$o" "$b" "$s"
+  printf '%-38s %-9s %-7s %s\n' "$n" "$o" "$s" "$b"
 done
 total=${#results[@]}
-echo "kill rate: $killed/$total killed, $survived survived, $errors errors, $stale stale ($((SECONDS - start_all)) s)"
+echo "kill rate ($set checks): $killed/$total killed, $survived survived, $errors errors, $stale stale; $((SECONDS - start_all)) s"
+[ $every -eq 1 ] && [ "$set" = all ] && echo "kill rate of the base checks alone: $base_killed/$total"
 [ $survived -eq 0 ] && [ $errors -eq 0 ] && [ $stale -eq 0 ]
