@@ -127,7 +127,7 @@ inline Grazing grazing_camera(const Scene& scene, const generators::OpenSpace& o
     return std::pair{eye, free_side};
   };
   std::size_t pick = static_cast<std::size_t>(draw.tangent) % tangents.size();
-  // For the elevation cases (height 4-7) prefer a tangent whose a is A's farther tangent vertex.
+  // For the elevation cases (height 4-7) prefer a tangent whose a is A's farther tangent vertex
   auto a_is_far_tangent = [&](const Tangent& t, Vec2 eye) {
     const Vec2 to = t.a - eye;
     for (Vec2 v : A.ring) {
@@ -144,10 +144,17 @@ inline Grazing grazing_camera(const Scene& scene, const generators::OpenSpace& o
     }
     return true;
   };
+  // ... and b is B's nearest vertex, so that B's highest slope is its roof at b.
+  auto b_is_nearest = [&](const Tangent& t, Vec2 eye) {
+    for (Vec2 v : B.ring)
+      if (length(v - eye) < length(t.b - eye)) return false;
+    return true;
+  };
   if (draw.height >= 4)
     for (std::size_t k = 0; k < tangents.size(); ++k) {
       const std::size_t q = (pick + k) % tangents.size();
-      if (a_is_far_tangent(tangents[q], eye_for(tangents[q]).first)) {
+      const Vec2 e = eye_for(tangents[q]).first;
+      if (a_is_far_tangent(tangents[q], e) && b_is_nearest(tangents[q], e)) {
         pick = q;
         break;
       }
@@ -161,17 +168,17 @@ inline Grazing grazing_camera(const Scene& scene, const generators::OpenSpace& o
     case 2: z = A.height + 0.3; break;
     case 3: z = open.bounds().hi.z + 5.0; break;
     case 4: case 5: case 6: case 7: {
-      // B's roof just below (4, 5) or above (6, 7) the line over A's roof from its farther
+      // B's roof at b just below (4, 5) or above (6, 7) the line over A's roof at its farther
       // tangent vertex (the conservative shadow's elevation for a roof above the eye): solve
-      // (h_A - z) / D_A = (h_B - z) / d_B for z, then move the eye by a few centimetres.
+      // (h_A - z) / D_A = (h_B - z) / |b - eye| for z, then move the eye by a few centimetres.
       const Vec2 to = t.a - eye;
-      double lo = 0.0, hi = 0.0, d_lo = length(to), d_hi = d_lo, d_b = HUGE_VAL;
+      double lo = 0.0, hi = 0.0, d_lo = length(to), d_hi = d_lo, d_b = 0.0;
       for (Vec2 v : A.ring) {
         const double angle = std::atan2(cross(to, v - eye), dot(to, v - eye));
         if (angle < lo) lo = angle, d_lo = length(v - eye);
         if (angle > hi) hi = angle, d_hi = length(v - eye);
       }
-      for (std::size_t k = 0, m = B.ring.size(); k < m; ++k) d_b = std::min(d_b, distance_to_segment(eye, B.ring[k], B.ring[(k + 1) % m]));
+      d_b = length(t.b - eye);  // B's roof at b, the vertex just beside (or behind) a
       const double d_a = std::max(d_lo, d_hi);
       if (d_b > d_a * 1.05) {
         const double level = (A.height * d_b - B.height * d_a) / (d_b - d_a);
@@ -201,8 +208,8 @@ inline Grazing grazing_camera(const Scene& scene, const generators::OpenSpace& o
   return out;
 }
 
-// An eye `reach` metres from a vertex of a deep CVP A, placed (among 48 directions around the
-// vertex, the `pick`-th that qualifies) so that another building's CVP B stands between the eye
+// An eye 1, 3 or 9 times `reach` metres from a vertex of a deep CVP A, placed (among 36
+// directions around each vertex, the `pick`-th that qualifies) so that another building's CVP B stands between the eye
 // and A's far part while A's nearest point is nearer than B's: when B is tested, A's shadow must
 // not be in the horizon yet (it is merged once the sweep passes A's farthest point). The camera
 // looks at B. Unusable when no direction qualifies.
@@ -221,7 +228,6 @@ inline Grazing in_front_of_deep_occluder(const Scene& scene, const generators::O
   if (prisms.size() < 2) return out;
   const detail::PrismRef pa = prisms[static_cast<std::size_t>(draw.occluder) % prisms.size()];
   const ConvexVerticalPrism& A = scene.buildings[pa.building].prisms[pa.prism];
-  const Vec2 a = A.ring[static_cast<std::size_t>(draw.vertex) % A.ring.size()];
   auto segment_hits_ring = [](Vec2 p, Vec2 q, const std::vector<Vec2>& ring) {
     for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
       const Vec2 c = ring[j], d = ring[i];
@@ -237,9 +243,11 @@ inline Grazing in_front_of_deep_occluder(const Scene& scene, const generators::O
   };
   // Candidate (eye, target) pairs in a fixed order; the draw picks one.
   std::vector<std::pair<Vec2, std::size_t>> found;
-  for (int k = 0; k < 48; ++k) {
-    const double psi = k * kTwoPi / 48;
-    const Vec2 e = a + Vec2{std::cos(psi), std::sin(psi)} * draw.reach;
+  for (std::size_t v = 0; v < A.ring.size(); ++v)
+  for (const double reach : {draw.reach, 3 * draw.reach, 9 * draw.reach})
+  for (int k = 0; k < 36; ++k) {
+    const double psi = k * kTwoPi / 36;
+    const Vec2 e = A.ring[(v + static_cast<std::size_t>(draw.vertex)) % A.ring.size()] + Vec2{std::cos(psi), std::sin(psi)} * reach;
     if (open.inside_building({e.x, e.y, draw.z})) continue;
     const double near_a = min_distance_to(A.ring, e);
     for (std::size_t t = 0; t < prisms.size(); ++t) {
@@ -273,7 +281,7 @@ inline Grazing in_front_of_deep_occluder(const Scene& scene, const generators::O
   out.camera = cam;
   out.occluder = scene.buildings[pa.building].id;
   out.target = scene.buildings[prisms[t].building].id;
-  out.a = a, out.b = c;
+  out.a = e, out.b = c;
   out.usable = true;
   return out;
 }

@@ -50,20 +50,17 @@ rc::Gen<std::vector<Move>> guard_scale_moves() {
   return rc::gen::mapcat(rc::gen::inRange(1, 7), [](int n) { return rc::gen::container<std::vector<Move>>(n, guard_scale_move()); });
 }
 
-RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsWhatAStepUncovers, ()) {
+// The guarded ΔH along `moves` from the grazing eye of `draw`, held to the oracle at every frame.
+void holds_along_moves(properties::GrazingDraw draw, const std::vector<Move>& moves) {
   const generators::SceneSpec spec =
       *rc::gen::oneOf(rcgen::manhattan_spec(), rcgen::scatter_spec(), rcgen::irregular_spec(), rcgen::tall_occluder_spec(1.7));
   const Scene scene = generators::scene_of(spec);
   RC_PRE(!scene.buildings.empty());
   const generators::OpenSpace open(scene);
-  properties::GrazingDraw draw = *properties::grazing_draw();
   draw.near = 0.1;  // the near plane is OH(OS)'s business (grazing_horizon_test)
-  // b hidden by a fraction of the guard's radius (a step of that much uncovers it), or by a bin.
-  if (*rc::gen::arbitrary<bool>()) draw.offset_metres = -0.5 * *rc::gen::element(0.5, 0.1, 0.3, 0.7, 0.9, 1.5);
   const properties::Grazing g = properties::grazing_camera(scene, open, draw);
   RC_TAG(g.usable ? "grazing start" : "no usable start");
   if (!g.usable) return;
-  const std::vector<Move> moves = *guard_scale_moves();
   const nlohmann::json params = generators::moves_params(g.camera, moves);
   const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
   auto method = make_method("delta_h_guarded", scene);
@@ -80,6 +77,27 @@ RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsWhatAStepUncovers, ()) {
               " the oracle sees (" + miss->witness + ")\n" + replay.str());
     }
   }
+}
+
+RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsWhatAStepUncovers, ()) {
+  properties::GrazingDraw draw = *properties::grazing_draw();
+  // b hidden by a fraction of the guard's radius (a step of that much uncovers it), or by a bin.
+  if (*rc::gen::arbitrary<bool>()) draw.offset_metres = -0.5 * *rc::gen::element(0.5, 0.1, 0.3, 0.7, 0.9, 1.5);
+  holds_along_moves(draw, *guard_scale_moves());
+}
+
+// A far roof just under a near building's shadow line at its farther tangent vertex
+// (grazing_cameras.hpp, heights 4-7), then one rise or step back within the guard's height and
+// radius: the far roof comes up over the near one while the carried-over certificate holds.
+RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsARoofARiseUncovers, ()) {
+  properties::GrazingDraw draw = *properties::grazing_draw();
+  draw.height = *rc::gen::inRange(4, 8);
+  draw.offset_bins = -*rc::gen::inRange(0, 40) * 0.5;
+  draw.offset_metres.reset();
+  const Move move = *rc::gen::oneOf(
+      rc::gen::map(rc::gen::element(0.45, 0.3, 0.2, 0.1), [](double a) { return Move{MoveKind::rise, a}; }),
+      rc::gen::map(rc::gen::element(0.45, 0.2), [](double a) { return Move{MoveKind::backward, a}; }));
+  holds_along_moves(draw, {move});
 }
 
 }  // namespace
