@@ -1,0 +1,104 @@
+// The guarded ΔH held to the oracle at every frame of short paths that start at a grazing eye
+// (properties/grazing_cameras.hpp: a far silhouette vertex just beside or behind a near one) and
+// then step sideways by less than, about, and more than the guard's radius, turn by less and more
+// than its turn, step forward or back and rise. Inside the motion region the PVS comes from the
+// region certificate (engine/delta_horizon/motion_region.hpp), so these are the moves where its
+// shrunk spans and elevations, its merge delay, its grown items and the guard itself decide what
+// a step uncovers (ci/mutants/run.sh weakens each; these properties must fail). The method runs
+// with the options the CLI and `builtin_subject delta_h_guarded` use. A failure prints the
+// `cullcheck verify` line that replays the path.
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <sstream>
+
+#include "engine/method.hpp"
+#include "generators/camera_moves.hpp"
+#include "generators/camera_paths.hpp"
+#include "generators/rapidcheck_gens.hpp"
+#include "generators/rapidcheck_moves.hpp"
+#include "properties/grazing_cameras.hpp"
+#include "properties/grazing_oracle.hpp"
+
+namespace cullcheck {
+namespace {
+
+namespace rcgen = generators::rcgen;
+using generators::Move;
+using generators::MoveKind;
+
+// Moves scaled to the guard (MethodOptions: 0.5 m plan radius, 0.5 m height, 0.05 rad turn):
+// sideways steps from 5 cm to 1.5 m, turns from 0.01 to 0.6 rad, short forward and back steps
+// and rises; 1-6 of them.
+rc::Gen<Move> guard_scale_move() {
+  const auto step = rc::gen::element(0.05, 0.1, 0.2, 0.3, 0.45, 0.7, 1.5);
+  const auto turn = rc::gen::element(0.01, 0.03, 0.045, 0.1, 0.3, 0.6);
+  auto signed_turn = rc::gen::map(rc::gen::tuple(turn, rc::gen::arbitrary<bool>()), [](const std::tuple<double, bool>& t) {
+    return Move{MoveKind::turn, std::get<1>(t) ? -std::get<0>(t) : std::get<0>(t)};
+  });
+  auto along = [step](MoveKind k) { return rc::gen::map(step, [k](double a) { return Move{k, a}; }); };
+  return rc::gen::weightedOneOf<Move>({{4, along(MoveKind::left)},
+                                       {4, along(MoveKind::right)},
+                                       {3, std::move(signed_turn)},
+                                       {1, along(MoveKind::forward)},
+                                       {1, along(MoveKind::backward)},
+                                       {1, rc::gen::map(rc::gen::element(0.2, 0.45, 0.8), [](double a) { return Move{MoveKind::rise, a}; })}});
+}
+
+rc::Gen<std::vector<Move>> guard_scale_moves() {
+  return rc::gen::mapcat(rc::gen::inRange(1, 7), [](int n) { return rc::gen::container<std::vector<Move>>(n, guard_scale_move()); });
+}
+
+// The guarded ΔH along `moves` from the grazing eye of `draw`, held to the oracle at every frame.
+void holds_along_moves(properties::GrazingDraw draw, const std::vector<Move>& moves) {
+  const generators::SceneSpec spec =
+      *rc::gen::oneOf(rcgen::manhattan_spec(), rcgen::scatter_spec(), rcgen::irregular_spec(), rcgen::tall_occluder_spec(1.7));
+  const Scene scene = generators::scene_of(spec);
+  RC_PRE(!scene.buildings.empty());
+  const generators::OpenSpace open(scene);
+  draw.near = 0.1;  // the near plane is OH(OS)'s business (grazing_horizon_test)
+  const properties::Grazing g = properties::grazing_camera(scene, open, draw);
+  RC_TAG(g.usable ? "grazing start" : "no usable start");
+  if (!g.usable) return;
+  const nlohmann::json params = generators::moves_params(g.camera, moves);
+  const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
+  auto method = make_method("delta_h_guarded", scene);
+  const oracle::Oracle truth(scene);
+  for (std::size_t f = 0; f < path.frames.size(); ++f) {
+    const Camera& camera = path.frames[f];
+    const std::vector<ObjectId> pvs = method->cull(camera).pvs;
+    if (open.inside_building(camera.position)) break;  // a step into a wall: nothing to hold from here on
+    if (const auto miss = properties::oracle_miss(truth, camera, pvs)) {
+      std::ostringstream replay;
+      replay << "replay: cullcheck verify " << generators::replay_args(spec) << " --path-kind moves --path-params '"
+             << params.dump() << "' --method delta_h_guarded --spacing 3 --frustum-resolution 128";
+      RC_FAIL("frame " + std::to_string(f) + ": delta_h_guarded culls building " + std::to_string(miss->building) +
+              " the oracle sees (" + miss->witness + ")\n" + replay.str());
+    }
+  }
+}
+
+RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsWhatAStepUncovers, ()) {
+  properties::GrazingDraw draw = *properties::grazing_draw();
+  // b hidden by a fraction of the guard's radius (a step of that much uncovers it), or by a bin.
+  if (*rc::gen::arbitrary<bool>()) draw.offset_metres = -0.5 * *rc::gen::element(0.5, 0.1, 0.3, 0.7, 0.9, 1.5);
+  holds_along_moves(draw, *guard_scale_moves());
+}
+
+// A far roof just under a near building's shadow line at its farther tangent vertex
+// (grazing_cameras.hpp, heights 4-7), then one rise or step back within the guard's height and
+// radius: the far roof comes up over the near one while the carried-over certificate holds.
+RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsARoofARiseUncovers, ()) {
+  properties::GrazingDraw draw = *properties::grazing_draw();
+  draw.height = *rc::gen::inRange(4, 8);
+  draw.offset_bins = -*rc::gen::inRange(0, 40) * 0.5;
+  draw.offset_metres.reset();
+  const Move move = *rc::gen::oneOf(
+      rc::gen::map(rc::gen::element(0.45, 0.3, 0.2, 0.1), [](double a) { return Move{MoveKind::rise, a}; }),
+      rc::gen::map(rc::gen::element(0.45, 0.2), [](double a) { return Move{MoveKind::backward, a}; }));
+  holds_along_moves(draw, {move});
+}
+
+}  // namespace
+}  // namespace cullcheck

@@ -1,0 +1,29 @@
+// The check every hard-case property makes: what the oracle sees from a viewpoint, the PVS
+// holds. Returns the first building the oracle sees and the PVS lacks, with its witness.
+#pragma once
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oracle/oracle.hpp"
+#include "properties/property_oracle.hpp"
+
+namespace cullcheck::properties {
+
+struct OracleMiss {
+  ObjectId building = 0;
+  std::string witness;  // the witness ray, or the exact model's name
+};
+
+inline std::optional<OracleMiss> oracle_miss(const oracle::Oracle& truth, const Camera& viewpoint,
+                                             const std::vector<ObjectId>& pvs) {
+  const oracle::OracleAnswer seen = truth.visible_set(viewpoint, property_oracle());
+  for (ObjectId id : seen.visible)
+    if (!std::binary_search(pvs.begin(), pvs.end(), id))
+      return OracleMiss{id, seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model};
+  return std::nullopt;
+}
+
+}  // namespace cullcheck::properties
