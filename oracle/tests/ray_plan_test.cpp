@@ -20,11 +20,6 @@ using namespace testing;
 
 bool witnessed(const OracleResult& r, ObjectId id) { return r.witnesses.count(id) == 1; }
 
-// A 1 m box building centred at (x, y) reaching from z0 to z0 + 1 (z0 = 0: a building).
-Building cube(ObjectId id, double x, double y, double height = 1.0) {
-  return box_building(id, x - 0.5, y - 0.5, x + 0.5, y + 0.5, height);
-}
-
 TEST(CandidateFilter, KeepsObjectsJustInsideEachEdgeOfTheView) {
   // Eye at 10 m looking east, hfov 60, vfov 40, near 1, far 100. Each object pokes 0.4 m into
   // the view across one edge, 20 m ahead (far: across the far plane); the filter must keep it and
