@@ -125,12 +125,24 @@ CaseOutcome run_case(const generators::FuzzCase& c, const FuzzOptions& options, 
   return out;
 }
 
+// A one-building scene: what a subject's handshake and a method's claim are asked on.
+Scene probe_scene() {
+  Scene probe;
+  probe.buildings.push_back(box_building(0, -5, -5, 5, 5, 10));
+  return probe;
+}
+
+// The ledger's detail of the shrunk counterexample.
+std::string counterexample_detail(const FuzzFailure& f) {
+  return f.message + " (shrunk to " + std::to_string(f.objects) + " objects, " + std::to_string(f.minimal.path.frames.size()) +
+         " frames, " + f.minimal.kind + ")";
+}
+
 }  // namespace
 
 std::vector<std::string> conservative_method_names() {
   // A claim does not depend on the scene: ask each method built on a one-building probe.
-  Scene probe;
-  probe.buildings.push_back(box_building(0, -5, -5, 5, 5, 10));
+  const Scene probe = probe_scene();
   std::vector<std::string> out;
   for (const std::string& name : method_names())
     if (make_method(name, probe)->claims_conservative()) out.push_back(name);
@@ -155,8 +167,7 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     result.methods = options.methods;
     for (std::size_t i = 0; i < options.methods.size(); ++i) result.subject_name += (i ? "," : "") + options.methods[i];
   } else {  // The handshake on a one-building scene tells what the subject takes.
-    Scene probe;
-    probe.buildings.push_back(box_building(0, -5, -5, 5, 5, 10));
+    const Scene probe = probe_scene();
     SubjectOptions so;
     so.command = options.subject;
     so.files = write_scene_files(probe, work.path(), "probe");
@@ -315,8 +326,7 @@ ClaimCheck fuzz_claim(const FuzzResult& r, const std::string& replay) {
   if (r.failure) {
     c.violations = 1;
     c.counterexample_replay = replay;
-    c.counterexample_detail = r.failure->message + " (shrunk to " + std::to_string(r.failure->objects) + " objects, " +
-                              std::to_string(r.failure->minimal.path.frames.size()) + " frames, " + r.failure->minimal.kind + ")";
+    c.counterexample_detail = counterexample_detail(*r.failure);
   }
   return c;
 }
@@ -338,8 +348,7 @@ std::vector<ClaimCheck> fuzz_claims(const FuzzResult& r, const std::string& repl
     if (refuted) {
       c.violations = 1;
       c.counterexample_replay = replay;
-      c.counterexample_detail = r.failure->message + " (shrunk to " + std::to_string(r.failure->objects) + " objects, " +
-                                std::to_string(r.failure->minimal.path.frames.size()) + " frames, " + r.failure->minimal.kind + ")";
+      c.counterexample_detail = counterexample_detail(*r.failure);
     }
     out.push_back(std::move(c));
   }
