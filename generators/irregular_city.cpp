@@ -42,10 +42,18 @@ Ring local_shape(Random& rng, const IrregularParams& p, double w, double d) {
   int shape = 0;
   while (shape < 4 && (weights[shape] == 0.0 || pick >= weights[shape])) pick -= weights[shape], ++shape;
   const double arm = p.min_arm_width;
+  // The arm across the depth is drawn before the one across the width: the order the pinned digests
+  // (generators/tests/pinned_streams_test.cpp) recorded when both draws sat in one call's
+  // arguments, whose order of evaluation C++ leaves open (gcc went right to left).
+  double across_d = 0, across_w = 0;
+  if (shape >= 1 && shape <= 3) {
+    across_d = draw_arm(rng, arm, d - arm);
+    across_w = draw_arm(rng, arm, shape == 1 ? w - arm : shape == 2 ? (w - arm) / 2 : w - 2 * arm);
+  }
   switch (shape) {
-    case 1: return l_shape_ring(w, d, draw_arm(rng, arm, w - arm), draw_arm(rng, arm, d - arm));
-    case 2: return u_shape_ring(w, d, draw_arm(rng, arm, (w - arm) / 2), draw_arm(rng, arm, d - arm));
-    case 3: return t_shape_ring(w, d, draw_arm(rng, arm, w - 2 * arm), draw_arm(rng, arm, d - arm));
+    case 1: return l_shape_ring(w, d, across_w, across_d);
+    case 2: return u_shape_ring(w, d, across_w, across_d);
+    case 3: return t_shape_ring(w, d, across_w, across_d);
     case 4: return convex_polygon(rng, w, d, static_cast<int>(rng.uniform_int(p.convex_min_vertices, p.convex_max_vertices)));
     default: return rectangle_ring(w, d);
   }

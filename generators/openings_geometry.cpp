@@ -8,6 +8,11 @@
 namespace cullcheck::generators {
 namespace {
 
+// A mesh corner in local (u, v, z) millimetres.
+struct Corner {
+  Millimetres u, v, z;
+};
+
 // Builds a mesh in local (u, v, z) millimetres, placing vertices once each.
 class LocalMesh {
  public:
@@ -23,7 +28,13 @@ class LocalMesh {
   }
 
   // A planar quad a-b-c-d (in order around it), as two triangles facing `outward` (local axes).
-  void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d, Vec3 outward) {
+  // New corners are numbered d first, then c, b, a: vertex numbering is part of the scene that the
+  // pinned digests fix (generators/tests/pinned_streams_test.cpp), and this is the order the
+  // numbering had when the corners were placed inside the call's arguments, whose order of
+  // evaluation C++ leaves open (gcc went right to left, clang left to right).
+  void quad(Corner ca, Corner cb, Corner cc, Corner cd, Vec3 outward) {
+    const std::uint32_t d = vertex(cd.u, cd.v, cd.z), c = vertex(cc.u, cc.v, cc.z), b = vertex(cb.u, cb.v, cb.z),
+                        a = vertex(ca.u, ca.v, ca.z);
     const Vec3 n = cross(local_[b] - local_[a], local_[c] - local_[a]);
     if (dot(n, outward) > 0) {
       mesh_.triangles.push_back({a, b, c});
@@ -62,7 +73,7 @@ MeshObject facade_wall_mesh(const PlanFrame& frame, Millimetres start, Millimetr
     });
   };
   LocalMesh m(frame);
-  auto at = [&](int a, int b, Millimetres v) { return m.vertex(start + us[a], v, zs[b]); };
+  auto at = [&](int a, int b, Millimetres v) { return Corner{start + us[a], v, zs[b]}; };
   for (int a = 0; a < nu; ++a)
     for (int b = 0; b < nz; ++b) {
       if (!filled(a, b)) continue;
@@ -89,7 +100,7 @@ MeshObject facade_wall_mesh(const PlanFrame& frame, Millimetres start, Millimetr
 MeshObject box_mesh(const PlanFrame& frame, Millimetres u0, Millimetres v0, Millimetres z0, Millimetres u1,
                     Millimetres v1, Millimetres z1) {
   LocalMesh m(frame);
-  auto p = [&](int i, int j, int k) { return m.vertex(i ? u1 : u0, j ? v1 : v0, k ? z1 : z0); };
+  auto p = [&](int i, int j, int k) { return Corner{i ? u1 : u0, j ? v1 : v0, k ? z1 : z0}; };
   m.quad(p(0, 0, 0), p(1, 0, 0), p(1, 1, 0), p(0, 1, 0), {0, 0, -1});
   m.quad(p(0, 0, 1), p(1, 0, 1), p(1, 1, 1), p(0, 1, 1), {0, 0, 1});
   m.quad(p(0, 0, 0), p(1, 0, 0), p(1, 0, 1), p(0, 0, 1), {0, -1, 0});

@@ -501,7 +501,10 @@ TEST(NumericalExtremes, UtmCitySeededCases) {
     if (r.uniform01() < 0.3) {  // nearly on a wall: 1 mm to 10 cm away
       const auto b = static_cast<std::size_t>(r.uniform01() * static_cast<double>(city.world.buildings.size()));
       const auto edge = static_cast<std::size_t>(r.uniform01() * 4.0);
-      k.world_at = utm::beside_wall(city, b, edge, r.uniform01(), std::pow(10.0, -3.0 + 2.0 * r.uniform01()));
+      // Distance before position: the order gcc gave when both draws were arguments of one call.
+      const double gap = std::pow(10.0, -3.0 + 2.0 * r.uniform01());
+      const double along_wall = r.uniform01();
+      k.world_at = utm::beside_wall(city, b, edge, along_wall, gap);
     }
     const std::string replay = "CULLCHECK_UTM_CASE=" + std::to_string(i) +
                                " build/properties/numerical_extremes_test --gtest_filter=NumericalExtremes.UtmCitySeededCases";

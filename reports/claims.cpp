@@ -111,8 +111,12 @@ void tilt(std::vector<Camera>& cameras, std::uint64_t seed) {
   const double degree = kPi / 180;
   for (Camera& c : cameras) {
     const auto kind = random.uniform_int(0, 2);
-    const double pitch = (random.bernoulli(0.5) ? 1 : -1) * random.uniform_real(0.5, 15.0) * degree;
-    const double roll = (random.bernoulli(0.5) ? 1 : -1) * random.uniform_real(0.5, 30.0) * degree;
+    // One draw per statement: the operands of * are unsequenced, so two draws in one expression
+    // could come out in either order on another compiler.
+    const double pitch_sign = random.bernoulli(0.5) ? 1 : -1;
+    const double pitch = pitch_sign * random.uniform_real(0.5, 15.0) * degree;
+    const double roll_sign = random.bernoulli(0.5) ? 1 : -1;
+    const double roll = roll_sign * random.uniform_real(0.5, 30.0) * degree;
     if (kind != 1 && c.pitch == 0.0) c.pitch = pitch;
     if (kind != 0 || c.pitch == 0.0) c.roll = roll;
   }

@@ -187,9 +187,11 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     CaseOutcome outcome = run_case(c, options, work.path());
     if (!failing) {
       result.oracle_frames += outcome.verification.oracle.frames_checked;
+      result.witness_recheck += outcome.verification.oracle.witness_recheck;
       for (const MethodRun& run : outcome.verification.runs) {
         result.checked_frames[run.method] += run.checked_pvs_size.size();
         result.skipped_frames[run.method] += run.frames_skipped;
+        result.witness_recheck_by_method[run.method] += run.witness_recheck;
       }
       for (const std::string& name : outcome.unavailable) result.skipped_frames[name] += c.path.frames.size();
     }
@@ -260,6 +262,10 @@ nlohmann::json fuzz_json(const FuzzResult& r) {
                       {"oracle_frames", r.oracle_frames},
                       {"checked_frames_by_method", r.checked_frames},
                       {"skipped_frames_by_method", r.skipped_frames}};
+  nlohmann::json recheck = {{"checked", r.witness_recheck.checked}, {"dropped", r.witness_recheck.dropped}};
+  for (const auto& [method, n] : r.witness_recheck_by_method)
+    recheck["by_method"][method] = {{"checked", n.checked}, {"dropped", n.dropped}};
+  j["witness_recheck"] = recheck;
   if (r.built_in) j["built_in_methods"] = r.methods;
   if (r.ready.claim.pixel_error_budget) j["pixel_error_budget"] = *r.ready.claim.pixel_error_budget;
   if (r.failure) {
@@ -294,6 +300,8 @@ std::string fuzz_summary(const FuzzResult& r, const std::string& dir) {
     sep = ", ";
   }
   out << "\n";
+  out << "witness re-check (double precision): " << r.witness_recheck.checked << " checked, " << r.witness_recheck.dropped
+      << " dropped\n";
   if (!r.failure) {
     out << "passed " << r.cases << " cases in " << r.seconds_total << " s\n";
     return out.str();

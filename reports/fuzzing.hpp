@@ -66,6 +66,10 @@ struct FuzzResult {
   // for a horizon method), by method, over the cases before the first failure.
   std::map<std::string, std::uint64_t> checked_frames, skipped_frames;
   std::uint64_t oracle_frames = 0;  // oracle answers computed (one per frame, shared by the methods)
+  // Witnesses of misses re-cast in double precision before they count (oracle/witness_recheck.hpp),
+  // over the same cases: dropped ones were single-precision artefacts and failed nothing.
+  oracle::WitnessRecheckCounts witness_recheck;
+  std::map<std::string, oracle::WitnessRecheckCounts> witness_recheck_by_method;
   std::optional<FuzzFailure> failure;
 };
 
