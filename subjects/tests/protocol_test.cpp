@@ -67,14 +67,16 @@ TEST(ParseReady, ApproximateClaimWithBudgetAndProjections) {
             std::optional<std::uint64_t>(0));
 }
 
+// A line the reader must refuse: the error's kind and a part of its message.
+struct ErrorCase {
+  const char* name;
+  std::string line;
+  Kind kind;
+  const char* in_message;
+};
+
 TEST(ParseReady, ErrorsAreProtocolViolationsDuringTheHandshake) {
-  struct Case {
-    const char* name;
-    std::string line;
-    Kind kind;
-    const char* in_message;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<ErrorCase> cases = {
       {"missing claims", R"({"type":"ready","name":"c"})", Kind::protocol, R"("claims" must be)"},
       {"claims not a string", R"({"type":"ready","claims":true})", Kind::protocol, R"("claims" must be)"},
       {"unknown claim", R"({"type":"ready","claims":"exact"})", Kind::protocol, R"(got "exact")"},
@@ -97,7 +99,7 @@ TEST(ParseReady, ErrorsAreProtocolViolationsDuringTheHandshake) {
       {"not JSON", "READY!", Kind::garbage, "expected a JSON ready message, got 'READY!'"},
       {"not an object", "[1,2]", Kind::garbage, "expected a JSON object (ready)"},
   };
-  for (const Case& c : cases) {
+  for (const ErrorCase& c : cases) {
     const SubjectError e = ready_error(c.line);
     EXPECT_EQ(e.kind(), c.kind) << c.name << ": " << e.what();
     EXPECT_EQ(e.frame(), SubjectError::kHandshake) << c.name;
@@ -147,13 +149,7 @@ TEST(ParseVisible, DuplicatesRemovedAndSorted) {
 }
 
 TEST(ParseVisible, ErrorsNameTheKindAndTheFrame) {
-  struct Case {
-    const char* name;
-    std::string line;
-    Kind kind;
-    const char* in_message;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<ErrorCase> cases = {
       {"wrong frame", R"({"type":"visible","frame":3,"ids":[1]})", Kind::wrong_frame, "answered frame 3, expected 4"},
       {"unknown id", R"({"frame":4,"ids":[1,2]})", Kind::unknown_id, "object 2 is not in the scene"},
       {"negative id", R"({"frame":4,"ids":[1,-1]})", Kind::garbage, R"("ids" holds -1, not an object id)"},
@@ -169,7 +165,7 @@ TEST(ParseVisible, ErrorsNameTheKindAndTheFrame) {
       {"wrong type", R"({"type":"ready","frame":4,"ids":[1]})", Kind::protocol, R"(got type "ready")"},
       {"not JSON", "this is not JSON", Kind::garbage, "expected a JSON visible message"},
   };
-  for (const Case& c : cases) {
+  for (const ErrorCase& c : cases) {
     const SubjectError e = visible_error(c.line);
     EXPECT_EQ(e.kind(), c.kind) << c.name << ": " << e.what();
     EXPECT_EQ(e.frame(), 4) << c.name;

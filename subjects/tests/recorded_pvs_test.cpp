@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/scene_io.hpp"
+#include "subjects/tests/subject_error_of.hpp"
 #include "subjects/recorded_pvs.hpp"
 #include "subjects/subject_error.hpp"
 
@@ -15,6 +16,7 @@ namespace cullcheck {
 namespace {
 
 using Kind = SubjectError::Kind;
+using test_support::error_of;
 
 Scene three_buildings() {  // ids 1, 3, 5
   Scene s;
@@ -41,17 +43,6 @@ class RecordedPvs : public ::testing::Test {
  private:
   std::vector<std::string> paths_;
 };
-
-template <class F>
-SubjectError error_of(F&& f) {
-  try {
-    f();
-  } catch (const SubjectError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no SubjectError thrown";
-  return SubjectError(Kind::protocol, "(none)", 0, "(none)");
-}
 
 TEST_F(RecordedPvs, ReadyLineAndFramesOutOfOrder) {
   const std::string path = write("recorded_out_of_order.jsonl",

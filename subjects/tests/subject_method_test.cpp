@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/scene_io.hpp"
+#include "subjects/tests/subject_error_of.hpp"
 #include "subjects/subject_method.hpp"
 
 #ifndef CULLCHECK_SCRIPTED_SUBJECT
@@ -20,6 +21,7 @@ namespace cullcheck {
 namespace {
 
 using Kind = SubjectError::Kind;
+using test_support::error_of;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -54,18 +56,6 @@ Camera camera() {
   c.position = {5, -20, 2};
   c.yaw = kPi / 2;
   return c;
-}
-
-// The SubjectError thrown by `f`.
-template <class F>
-SubjectError error_of(F&& f) {
-  try {
-    f();
-  } catch (const SubjectError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no SubjectError thrown";
-  return SubjectError(Kind::protocol, "(none)", 0, "(none)");
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
