@@ -38,11 +38,9 @@ void check_conservative(const std::string& method_name, const generators::SceneC
   auto method = make_method(method_name, scene, options);
   RC_ASSERT(method->claims_conservative());
   const oracle::Oracle truth(scene);
-  const oracle::OracleAnswer seen = truth.visible_set(c.camera, property_oracle());
+  oracle::OracleAnswer seen = truth.visible_set(c.camera, property_oracle());
   const CullResult culled = method->cull(c.camera);
-  std::vector<ObjectId> missed;
-  std::set_difference(seen.visible.begin(), seen.visible.end(), culled.pvs.begin(), culled.pvs.end(),
-                      std::back_inserter(missed));
+  const std::vector<ObjectId> missed = confirmed_misses(truth, seen, c.camera, culled.pvs);
   if (!missed.empty()) {
     RC_LOG() << "replay: cullcheck verify " << c << " --method " << method_name << " " << option_flags(options)
              << " --spacing 3 --frustum-resolution 128\n";

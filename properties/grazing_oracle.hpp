@@ -1,5 +1,6 @@
 // The check every hard-case property makes: what the oracle sees from a viewpoint, the PVS
-// holds. Returns the first building the oracle sees and the PVS lacks, with its witness.
+// holds. Returns the first building the oracle sees and the PVS lacks, with its witness (one that
+// stands re-cast in double precision: property_oracle.hpp's confirmed_misses).
 #pragma once
 
 #include <algorithm>
@@ -19,11 +20,11 @@ struct OracleMiss {
 
 inline std::optional<OracleMiss> oracle_miss(const oracle::Oracle& truth, const Camera& viewpoint,
                                              const std::vector<ObjectId>& pvs) {
-  const oracle::OracleAnswer seen = truth.visible_set(viewpoint, property_oracle());
-  for (ObjectId id : seen.visible)
-    if (!std::binary_search(pvs.begin(), pvs.end(), id))
-      return OracleMiss{id, seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model};
-  return std::nullopt;
+  oracle::OracleAnswer seen = truth.visible_set(viewpoint, property_oracle());
+  const std::vector<ObjectId> missed = confirmed_misses(truth, seen, viewpoint, pvs);
+  if (missed.empty()) return std::nullopt;
+  const ObjectId id = missed.front();
+  return OracleMiss{id, seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model};
 }
 
 }  // namespace cullcheck::properties
