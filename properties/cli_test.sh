@@ -411,6 +411,9 @@ done
   && pass || fail "fuzz: the counterexample was not shrunk"
 PATH="$(dirname "$cc"):$PATH" sh "$work/cex/replay.sh" >/dev/null 2>&1
 [ $? -eq 1 ] && pass || fail "fuzz: replay.sh does not reproduce the failure"
+# Its path says its frame, so --coordinates world cannot misread it.
+[ "$(json_field "$work/cex/path.json" "d['coordinates'] == 'local' and d['origin'] == [0, 0]")" = True ] \
+  && pass || fail "fuzz: the counterexample's path.json does not say it is scene-local"
 # A culler that takes bounding boxes as solid occluders is wrong only where an object does not
 # fill its box: through a door or window, under an arcade, past an L-shaped building.
 expect_exit 1 "fuzz finds the box-occluder culler" "$cc" fuzz --subject "$subjects/box_occluder_subject" --budget 200 --seed 2 \

@@ -372,8 +372,18 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
   if (ec) throw InputError("folder " + dir, "(folder)", "cannot be created: " + ec.message());
   const Scene scene = generators::scene_of(f.minimal.spec);
   write_scene_files(scene, dir);
-  write_text_file_atomically(dir + "/path.json", path_to_json_text(f.minimal.path));
-  if (f.minimal.path.frames.size() == 1) write_text_file_atomically(dir + "/camera.json", camera_to_json_text(f.minimal.path.frames[0]));
+  // The files say their frame (scene-local, and the origin it is local to), so a replay reads them
+  // the same whatever --coordinates says.
+  CameraPath path = f.minimal.path;
+  path.coordinates = CoordinateFrame::local;
+  path.origin = scene.origin;
+  write_text_file_atomically(dir + "/path.json", path_to_json_text(path));
+  if (path.frames.size() == 1) {
+    nlohmann::json camera = nlohmann::json::parse(camera_to_json_text(path.frames[0]));
+    camera["coordinates"] = "local";
+    camera["origin"] = {scene.origin.x, scene.origin.y};
+    write_text_file_atomically(dir + "/camera.json", camera.dump() + "\n");
+  }
   const std::string who = options.subject.empty() ? "--method " + f.method : "--subject " + shell_quote(options.subject);
   const std::string replay = "cullcheck gate --scene \"$here/scene.json\" --path \"$here/path.json\" " + who +
                              " --oracle-stride 1 -o \"$here/gate.json\"";
