@@ -1,8 +1,11 @@
 #include "oracle/mesh.hpp"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "oracle/roof_triangulation.hpp"
@@ -61,8 +64,27 @@ TriangleMesh triangulate(const Scene& scene) {
     const MeshObject& m = scene.meshes[k];
     const auto owner = static_cast<std::uint32_t>(scene.buildings.size() + k);
     for (const auto& t : m.triangles) add_triangle(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], owner);
+    mesh.mesh_edges.push_back(mesh_edges_of(m));
   }
   return mesh;
+}
+
+std::vector<MeshEdge> mesh_edges_of(const MeshObject& m) {
+  using Point = std::tuple<double, double, double>;
+  auto point = [&](std::uint32_t v) { return Point{m.vertices[v].x, m.vertices[v].y, m.vertices[v].z}; };
+  std::map<std::pair<Point, Point>, std::size_t> index;  // by end points, lower first
+  std::vector<MeshEdge> edges;
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t u = m.triangles[t][k], w = m.triangles[t][(k + 1) % 3];
+      const Point pu = point(u), pw = point(w);
+      if (pu == pw) continue;  // a degenerate triangle's collapsed edge
+      const auto key = pu < pw ? std::pair{pu, pw} : std::pair{pw, pu};
+      const auto [it, added] = index.emplace(key, edges.size());
+      if (added) edges.push_back(MeshEdge{m.vertices[u], m.vertices[w], {}});
+      edges[it->second].triangles.push_back(t);
+    }
+  return edges;
 }
 
 }  // namespace cullcheck::oracle

@@ -20,6 +20,17 @@
 
 namespace cullcheck::oracle {
 
+// An edge of a mesh object: its end points and the triangles (indices into the object's own
+// triangles) that have it; one triangle for a boundary edge, three or more where the mesh is not
+// a manifold.
+struct MeshEdge {
+  Vec3 a, b;
+  std::vector<std::uint32_t> triangles;
+};
+
+// The edges of a mesh object, in the order its triangles first name them.
+std::vector<MeshEdge> mesh_edges_of(const MeshObject& m);
+
 struct TriangleMesh {
   // Vertices in scene-local metres (double). Embree receives them as floats relative to
   // `origin`, a whole-metre point near the scene's centre, so single precision is spent on the
@@ -33,6 +44,10 @@ struct TriangleMesh {
   std::size_t building_count = 0;          // objects [0, building_count) are buildings
   // Per building: its roof triangles as indices into its footprint (roof_triangulation.hpp).
   std::vector<std::vector<std::array<std::uint32_t, 3>>> roofs;
+  // Per mesh object (Scene::meshes[k]): its edges, for the rays that graze its silhouette
+  // (ray_plan.hpp). Vertices equal in position count as one, so a mesh whose triangles do not
+  // share indices (as glTF files often store them) still has its inner edges.
+  std::vector<std::vector<MeshEdge>> mesh_edges;
 };
 
 // Embree's index buffers are 32-bit and the merged mesh shares no vertex, so it holds at most

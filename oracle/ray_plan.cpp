@@ -89,15 +89,50 @@ void RayPlan::plan_object(std::uint32_t index, std::vector<PlannedRay>& out) {
   ray.source = RaySource::surface_sample;
   for (Vec3 p : samples.points)
     if (cone_.ray_toward(p, ray)) out.push_back(ray);
-  if (building && options_.graze_offset > 0.0) plan_grazing(index, out);
+  if (options_.graze_offset > 0.0) {
+    if (building) plan_grazing(index, out);
+    else plan_mesh_grazing(index, out);
+  }
 }
 
+// Rays just either side of a silhouette edge p0-p1 of object `index`, sampled along it: the
+// slivers where a float rounding error would show or hide what lies behind the edge.
+void RayPlan::graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out) {
+  const ViewTransform& view = cone_.transform();
+  const bool ortho = view.orthographic();
+  const Vec3 eye = view.eye(), forward = view.forward();
+  const double ortho_size = ortho ? std::max(camera_.ortho_width, camera_.ortho_height) : 0.0;
+  PlannedRay ray{};
+  ray.aimed_at = index;
+  ray.source = RaySource::grazing;
+  const Vec3 edge = p1 - p0;
+  const double len = length(edge);
+  if (!(len > 0.0)) return;
+  const double steps = std::ceil(len / options_.spacing_m);
+  const std::size_t m = std::max<std::size_t>(std::size_t(options_.edge_samples), steps > 1e6 ? std::size_t(1e6) : std::size_t(steps));
+  for (std::size_t i = 0; i <= m; ++i) {
+    const Vec3 p = p0 + edge * (double(i) / double(m));
+    const Vec3 view_dir = ortho ? forward : p - eye;
+    const Vec3 side = cross(view_dir, edge);
+    const double side_len = length(side);
+    if (!(side_len > 1e-12 * length(view_dir) * len)) continue;  // the edge seen end-on: no sliver
+    const double reach = ortho ? ortho_size : length(view_dir);
+    const double offset = std::max(options_.graze_offset * reach, kGrazeFloorRelative * length(p - mesh_.origin));
+    for (double sign : {-1.0, 1.0})
+      if (cone_.ray_toward(p + side * (sign * offset / side_len), ray, /*to_far=*/true)) {
+        out.push_back(ray);
+        ++grazing_;
+      }
+  }
+}
+
+// A building's silhouette: its vertical edges between a wall the eye sees and one it does not,
+// and its roof edges between the roof and a wall on the other side of the eye's view.
 void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
   const Building& b = scene_.buildings[index];
   const ViewTransform& view = cone_.transform();
   const bool ortho = view.orthographic();
   const Vec3 eye = view.eye(), forward = view.forward();
-  const double ortho_size = ortho ? std::max(camera_.ortho_width, camera_.ortho_height) : 0.0;
   const std::vector<Vec2>& ring = b.footprint;
   const std::size_t n = ring.size();
   // Facing of wall k (footprint edge k -> k+1, counter-clockwise, so its outward normal is the
@@ -109,35 +144,32 @@ void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
     wall[k] = facing(ortho ? -dot(outward, plan(forward)) : dot(outward, plan(eye) - a));
   }
   const int roof = facing(ortho ? -forward.z : eye.z - b.height);
-
-  PlannedRay ray{};
-  ray.aimed_at = index;
-  ray.source = RaySource::grazing;
-  auto graze_along = [&](Vec3 p0, Vec3 p1) {
-    const Vec3 edge = p1 - p0;
-    const double len = length(edge);
-    if (!(len > 0.0)) return;
-    const double steps = std::ceil(len / options_.spacing_m);
-    const std::size_t m = std::max<std::size_t>(std::size_t(options_.edge_samples), steps > 1e6 ? std::size_t(1e6) : std::size_t(steps));
-    for (std::size_t i = 0; i <= m; ++i) {
-      const Vec3 p = p0 + edge * (double(i) / double(m));
-      const Vec3 view_dir = ortho ? forward : p - eye;
-      const Vec3 side = cross(view_dir, edge);
-      const double side_len = length(side);
-      if (!(side_len > 1e-12 * length(view_dir) * len)) continue;  // the edge seen end-on: no sliver
-      const double reach = ortho ? ortho_size : length(view_dir);
-      const double offset = std::max(options_.graze_offset * reach, kGrazeFloorRelative * length(p - mesh_.origin));
-      for (double sign : {-1.0, 1.0})
-        if (cone_.ray_toward(p + side * (sign * offset / side_len), ray, /*to_far=*/true)) {
-          out.push_back(ray);
-          ++grazing_;
-        }
-    }
-  };
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 v = ring[k], next = ring[(k + 1) % n];
-    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along({v.x, v.y, 0.0}, {v.x, v.y, b.height});
-    if (silhouette(wall[k], roof)) graze_along({v.x, v.y, b.height}, {next.x, next.y, b.height});
+    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along(index, {v.x, v.y, 0.0}, {v.x, v.y, b.height}, out);
+    if (silhouette(wall[k], roof)) graze_along(index, {v.x, v.y, b.height}, {next.x, next.y, b.height}, out);
+  }
+}
+
+// A mesh object's silhouette: its boundary edges, and the edges whose triangles do not all face
+// the eye the same way (or one is seen edge-on). Triangles are two-sided, so a facing is a side
+// of the triangle's plane, whichever way its vertices wind.
+void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
+  const std::size_t k = index - scene_.buildings.size();
+  const MeshObject& m = scene_.meshes[k];
+  const ViewTransform& view = cone_.transform();
+  const bool ortho = view.orthographic();
+  const Vec3 eye = view.eye(), forward = view.forward();
+  auto facing_of = [&](std::uint32_t t) {
+    const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+    const Vec3 normal = cross(b - a, c - a);
+    return facing(ortho ? -dot(normal, forward) : dot(normal, eye - a));
+  };
+  for (const MeshEdge& e : mesh_.mesh_edges[k]) {
+    bool rim = e.triangles.size() == 1;
+    const int first = facing_of(e.triangles[0]);
+    for (std::size_t i = 1; i < e.triangles.size() && !rim; ++i) rim = silhouette(first, facing_of(e.triangles[i]));
+    if (rim || first == 0) graze_along(index, e.a, e.b, out);
   }
 }
 

@@ -1,7 +1,7 @@
 // The ray oracle's sampling plan: which rays to cast, in a fixed order (design: "Oracle").
 //
 // Order: candidate objects (buildings, then mesh objects) in scene order, each with its surface
-// samples in order (surface_samples.hpp) and, for a building, its silhouette-grazing rays; then
+// samples in order (surface_samples.hpp) and its silhouette-grazing rays; then
 // the stratified grid over the view volume row by row, jittered by a SplitMix64 stream seeded
 // with options.seed. The plan is produced in chunks so that a query over millions of rays needs
 // memory for one chunk only. Everything here is in the oracle's own view transform
@@ -13,7 +13,9 @@
 // Silhouette-grazing rays (the slivers beside an occluder's outline, where rounding bugs live):
 // a building's vertical edge is on its silhouette when the two walls meeting there do not both
 // face the eye or both face away, a roof edge when its wall and the roof do not (an edge seen
-// exactly edge-on counts). Along each silhouette edge, at max(edge_samples, length / spacing)
+// exactly edge-on counts). A mesh object's edge is on its silhouette when it bounds one triangle
+// only, or its triangles do not all lie with the eye on the same side of their planes (or one is
+// seen edge-on); vertices equal in position are one vertex (mesh.hpp). Along each silhouette edge, at max(edge_samples, length / spacing)
 // intervals (ends included), two rays pass the edge point p on either side, aimed at p moved by
 // the graze distance (sampling.hpp) along the direction perpendicular to both the ray and the
 // edge, and run on to the far plane: one just misses the occluder and witnesses what lies behind
@@ -90,6 +92,8 @@ class RayPlan {
  private:
   void plan_object(std::uint32_t index, std::vector<PlannedRay>& out);
   void plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out);
+  void plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out);
+  void graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out);
   void plan_cell(std::vector<PlannedRay>& out);
 
   const Scene& scene_;

@@ -26,8 +26,8 @@ struct SamplingOptions {
   // is widened until it fits (surface_samples.hpp says when it cannot).
   std::size_t max_samples_per_building = 4096;
   // Silhouette-grazing rays (ray_plan.hpp): along every silhouette edge of every candidate
-  // building (its vertical edges and roof edges where a face toward the eye meets one away from
-  // it), at the edge-sample spacing, one ray just beside the edge on each side, passing it at
+  // object (a building's vertical and roof edges where a face toward the eye meets one away from
+  // it; a mesh object's boundary edges and edges between triangles facing either way), at the edge-sample spacing, one ray just beside the edge on each side, passing it at
   // graze_offset times the distance from the eye (radians; for an orthographic camera, times the
   // larger side of its view box), and at least 1e-6 of the point's distance from the mesh origin
   // (16 float ulps, so that Embree's answer is not decided by rounding). 0 disables them.

@@ -161,5 +161,62 @@ TEST(GrazingRays, WitnessABuildingSeenOnlyThroughASliverBetweenTwoOccluders) {
   EXPECT_NEAR(with.witnesses.at(3).hit_point.x, 30.0, 1e-6);
 }
 
+// The block x0..x1, y0..y1, 0..h as a closed mesh of 12 triangles; `shared` false gives every
+// triangle its own three vertices, as many glTF files store them.
+MeshObject box_mesh_object(ObjectId id, double x0, double y0, double x1, double y1, double h, bool shared = true) {
+  const std::vector<Vec3> corners = {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0},
+                                     {x0, y0, h}, {x1, y0, h}, {x1, y1, h}, {x0, y1, h}};
+  const std::vector<std::array<std::uint32_t, 3>> faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                                                           {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  if (shared) return mesh_object(id, corners, faces);
+  std::vector<Vec3> v;
+  std::vector<std::array<std::uint32_t, 3>> t;
+  for (const auto& f : faces) {
+    const auto base = static_cast<std::uint32_t>(v.size());
+    for (std::uint32_t i : f) v.push_back(corners[i]);
+    t.push_back({base, base + 1, base + 2});
+  }
+  return mesh_object(id, std::move(v), std::move(t));
+}
+
+TEST(GrazingRays, RunBesideAMeshObjectsSilhouetteEdgesWhetherOrNotItsTrianglesShareVertices) {
+  // The block of the test above as a closed mesh. From (0, 0, 1.7) only its west face (x = 10)
+  // faces the eye, the bottom face included in those facing away: the silhouette is the west
+  // face's four edges, vertical 10 m (6 points each) and horizontal 6 m at z = 0 and z = 10
+  // (5 points each); the diagonals inside faces are not on it. 2 rays per point: 44.
+  const Camera c = level_camera({0, 0, 1.7}, 0.0, 100 * kDeg, 100 * kDeg);
+  for (bool shared : {true, false}) {
+    const Scene scene = scene_of({}, {box_mesh_object(1, 10, -3, 12, 3, 10, shared)});
+    const OracleResult r = RayOracle(scene).witness(c, SamplingOptions{});
+    EXPECT_EQ(r.grazing_rays, 44u) << (shared ? "shared" : "unshared") << " vertices";
+    SamplingOptions off;
+    off.graze_offset = 0.0;
+    EXPECT_EQ(r.rays_cast, RayOracle(scene).witness(c, off).rays_cast + 44u);
+  }
+  // An open sheet (one wall quad, two triangles) has its four boundary edges on the silhouette
+  // from either side: 10 m wide (5 intervals, 6 points), 5 m tall (max(4, 3) = 4 intervals,
+  // 5 points), facing the eye at x = 10: 2 * (6 + 6 + 5 + 5) rays.
+  const Scene sheet = scene_of({}, {wall_mesh(2, {10, -5, 0}, {0, 1, 0}, 10, 5)});
+  EXPECT_EQ(RayOracle(sheet).witness(c, SamplingOptions{}).grazing_rays, 2u * (6 + 6 + 5 + 5));
+}
+
+TEST(GrazingRays, WitnessAMeshObjectSeenOnlyThroughASliverBetweenTwoMeshOccluders) {
+  // The sliver scene of the test above, every object a mesh: only a grazing ray along a mesh
+  // occluder's silhouette edge finds the wall behind the gap.
+  const Camera c = level_camera({0, -1, 1.7}, 0.0, 60 * kDeg, 60 * kDeg);
+  const Scene scene = scene_of({}, {box_mesh_object(1, 10, -20, 12, 0, 20), box_mesh_object(2, 10, 0.20036, 12, 20, 20, false),
+                                    box_mesh_object(3, 30, -9.3, 31, 10.7, 12)});
+  SamplingOptions o;
+  o.frustum_resolution = 16;
+  o.graze_offset = 0.0;
+  EXPECT_EQ(RayOracle(scene).witness(c, o).witnessed, (std::vector<ObjectId>{1, 2}));
+  o.graze_offset = 1e-5;
+  const OracleResult with = RayOracle(scene).witness(c, o);
+  EXPECT_EQ(with.witnessed, (std::vector<ObjectId>{1, 2, 3}));
+  ASSERT_TRUE(witnessed(with, 3));
+  EXPECT_EQ(with.witnesses.at(3).source, RaySource::grazing);
+  EXPECT_NEAR(with.witnesses.at(3).hit_point.x, 30.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace cullcheck::oracle
