@@ -206,12 +206,12 @@ inline bool corner_before_near_plane(const Scene& scene, const Grazing& g) {
 
 // --- A far roof that a rise lifts over a near one -----------------------------------------------
 
-// grazing_camera's elevation draw (heights 4-7: B's roof at b on the line over A's roof at A's
-// farther tangent vertex, nudged) with the eye 1-5 m beyond a, so that B is many times farther
+// grazing_camera's elevation draw with the eye below the level (heights 6 and 7: B's roof at b on
+// the line over A's roof at A's farther tangent vertex, the eye 5 or 30 cm lower) 1-5 m beyond a, so that B is many times farther
 // than A and a rise of the eye by a few decimetres lowers A's shadow line below B's roof.
 inline rc::Gen<GrazingDraw> far_roof_draw() {
   using generators::rcgen::detail::int_in;
-  return rc::gen::map(rc::gen::tuple(grazing_draw(), int_in(4, 7), rc::gen::element(2.0, 1.0, 3.0, 5.0), int_in(0, 40)),
+  return rc::gen::map(rc::gen::tuple(grazing_draw(), int_in(6, 7), rc::gen::element(2.0, 1.0, 3.0, 5.0), int_in(0, 40)),
                       [](const auto& t) {
                         auto [d, height, distance, half_bins] = t;
                         d.height = height;
@@ -221,6 +221,21 @@ inline rc::Gen<GrazingDraw> far_roof_draw() {
                         d.near = 0.1;
                         return d;
                       });
+}
+
+// far_roof_draw's camera, with the far CVP chosen for depth: from the drawn target on, the first
+// of 24 whose b is at least 6 times as far from the eye as a, with the eye set by the roof line
+// (not left at the 1.7 m fallback); the drawn target's camera when none is.
+inline Grazing far_roof_camera(const Scene& scene, const generators::OpenSpace& open, GrazingDraw draw) {
+  const int first = draw.target;
+  for (int k = 0; k < 24; ++k) {
+    draw.target = first + k;
+    const Grazing g = grazing_camera(scene, open, draw);
+    const Vec2 e = plan(g.camera.position);
+    if (g.usable && g.camera.position.z != 1.7 && length(g.b - e) >= 6 * length(g.a - e)) return g;
+  }
+  draw.target = first;
+  return grazing_camera(scene, open, draw);
 }
 
 }  // namespace cullcheck::properties
