@@ -19,6 +19,7 @@
 #include "generators/camera_moves.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/rapidcheck_gens.hpp"
+#include "generators/rapidcheck_hard_cases.hpp"
 #include "generators/rapidcheck_moves.hpp"
 #include "properties/grazing_cameras.hpp"
 #include "properties/grazing_horizon_cases.hpp"
@@ -154,6 +155,51 @@ TEST(GrazingEyes, GuardedDeltaHorizonKeepsAFarRoofARiseLiftsOverANearOne) {
   EXPECT_TRUE(held);
   std::printf("far roof uncovered by the rise: %zu of %zu cases\n", uncovered, cases);
   EXPECT_GE(20 * uncovered, cases) << "cases where the rise uncovers the far roof";
+}
+
+// A low building wholly in front of a taller building's long facade, seen from nearer the tall
+// one (grazing_horizon_cases.hpp, as for OH(OS)), then a stop or a sideways step of 0.3 m: the
+// certificate made at the first frame may let the tall one's shrunk shadow hide what the sweep
+// reaches only once it has passed the tall one's farthest point (+ 2ε), not its nearest. Counts
+// the cases where the oracle sees the low building at the first frame and asserts a floor of 5%
+// (about 12% at the CI seed).
+TEST(GrazingEyes, GuardedDeltaHorizonKeepsALowBuildingBeforeADeepFacade) {
+  std::size_t cases = 0, reached = 0;
+  const bool held = rc::check("delta_h_guarded keeps a low building before a deep facade", [&] {
+    const generators::SceneSpec spec = *rcgen::facade_scatter_spec();
+    const Scene scene = generators::scene_of(spec);
+    RC_PRE(!scene.buildings.empty());
+    const generators::OpenSpace open(scene);
+    const properties::FacadeDraw draw = *properties::facade_draw();
+    const Move move = *rc::gen::element(Move{MoveKind::stop, 0.0}, Move{MoveKind::left, 0.3}, Move{MoveKind::right, 0.3});
+    const properties::FacadeCase c = properties::before_a_deep_facade(scene, open, draw);
+    ++cases;
+    RC_TAG(c.reached ? "low building before a facade" : "no such pair");
+    if (!c.reached) return;
+    const nlohmann::json params = generators::moves_params(c.grazing.camera, {move});
+    const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
+    auto method = make_method("delta_h_guarded", scene);
+    const oracle::Oracle truth(scene);
+    for (std::size_t f = 0; f < path.frames.size(); ++f) {
+      const Camera& camera = path.frames[f];
+      const std::vector<ObjectId> pvs = method->cull(camera).pvs;
+      if (open.inside_building(camera.position)) break;
+      const oracle::OracleAnswer seen = truth.visible_set(camera, property_oracle());
+      if (f == 0 && std::binary_search(seen.visible.begin(), seen.visible.end(), c.grazing.target)) ++reached;
+      for (ObjectId id : seen.visible) {
+        if (std::binary_search(pvs.begin(), pvs.end(), id)) continue;
+        std::ostringstream replay;
+        replay << "replay: cullcheck verify " << generators::replay_args(spec) << " --path-kind moves --path-params '"
+               << params.dump() << "' --method delta_h_guarded --spacing 3 --frustum-resolution 128";
+        const std::string witness = seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model;
+        RC_FAIL("frame " + std::to_string(f) + ": delta_h_guarded culls building " + std::to_string(id) + " the oracle sees (" +
+                witness + ")\n" + replay.str());
+      }
+    }
+  });
+  EXPECT_TRUE(held);
+  std::printf("low building before a deep facade, seen by the oracle: %zu of %zu cases\n", reached, cases);
+  EXPECT_GE(20 * reached, cases) << "cases that reached a low building seen before a deep facade";
 }
 
 }  // namespace
