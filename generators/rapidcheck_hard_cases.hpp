@@ -58,6 +58,43 @@ inline rc::Gen<SceneSpec> narrow_gap_scatter_spec() {
                                                  }));
 }
 
+// Long slabs and blocks of every height packed closely (0.3-3 m apart): 8-25 rotated rectangles
+// in a 50-120 m square, up to 40 m long, 30-70% thin, 1-40 m tall. Low buildings stand in front
+// of the long facades of tall ones, which an eye looking along the facade sees obliquely (the
+// occlusion horizon's merge delay, properties/grazing_horizon_cases.hpp).
+inline rc::Gen<SceneSpec> facade_scatter_spec() {
+  using detail::int_in;
+  return detail::spec_of("scatter", rc::gen::map(rc::gen::tuple(int_in(12, 30), int_in(50, 90), int_in(3, 30), int_in(30, 70)),
+                                                 [](const std::tuple<int, int, int, int>& t) {
+                                                   const auto [count, area, gap_dm, thin] = t;
+                                                   return nlohmann::json{{"count", count},
+                                                                         {"area_size", area},
+                                                                         {"max_size", 40},
+                                                                         {"min_height", 1.0},
+                                                                         {"max_height", 40.0},
+                                                                         {"min_gap", gap_dm / 10.0},
+                                                                         {"thin_fraction", thin / 100.0}};
+                                                 }));
+}
+
+// Small buildings (2-12 m) spread apart in a 40-160 m square, 3-30 m tall, up to half of them
+// thin: a building near the eye is small enough that its shadow enters the horizon before the
+// buildings behind it are tested (the near-plane guard, properties/grazing_horizon_cases.hpp).
+inline rc::Gen<SceneSpec> small_building_scatter_spec() {
+  using detail::int_in;
+  return detail::spec_of("scatter", rc::gen::map(rc::gen::tuple(int_in(4, 20), int_in(40, 160), int_in(0, 50)),
+                                                 [](const std::tuple<int, int, int>& t) {
+                                                   const auto [count, area, thin] = t;
+                                                   return nlohmann::json{{"count", count},
+                                                                         {"area_size", area},
+                                                                         {"min_size", 2.0},
+                                                                         {"max_size", 12.0},
+                                                                         {"min_height", 3.0},
+                                                                         {"max_height", 30.0},
+                                                                         {"thin_fraction", thin / 100.0}};
+                                                 }));
+}
+
 // The scenes of the hard-case properties: the large occluded Manhattan grids (most of the city
 // hidden from the street), the narrow-gap cities, and the small scenes of every generator.
 inline rc::Gen<SceneSpec> hard_scene_spec() {
