@@ -75,6 +75,7 @@ CHECKS
     minkowski) region_checks Minkowski ;;
     corrected) region_checks CorrectedAdjustable ;;
     view_cell) cat <<CHECKS
+grazing|ViewCell.PvsHoldsFromEyesLookingDownANarrowGap|view_cell_test|$tests/view_cell_test --gtest_filter=ViewCell.PvsHoldsFromEyesLookingDownANarrowGap
 base|ViewCell.PvsHoldsFromEveryEyeInTheCell|view_cell_test|$tests/view_cell_test --gtest_filter=ViewCell.PvsHoldsFromEveryEyeInTheCell
 CHECKS
       ;;
