@@ -212,4 +212,28 @@ inline rc::Gen<SceneCase> hard_scene_case(rc::Gen<SceneSpec> specs = hard_scene_
   });
 }
 
+// --- Alleys: narrow gaps that run through a whole block ---------------------------------------
+
+// Manhattan blocks of 2-3 lots in one row, so the 4 mm to 20 cm gaps between neighbours (2 x
+// setback, no jitter) run straight through the block, 30-60 m deep, beside narrow 6-8 m streets:
+// from across the street, what stands beyond the block shows only down an alley, from a stretch
+// of the street about as wide as the alley (the case view-cell boundary sampling must not leave
+// uncovered). 2-4 x 2-4 blocks, no slabs.
+inline rc::Gen<SceneSpec> alley_manhattan_spec() {
+  using detail::int_in;
+  return detail::spec_of("manhattan",
+                         rc::gen::map(rc::gen::tuple(int_in(2, 4), int_in(2, 4), int_in(2, 3), int_in(30, 60), int_in(6, 8), int_in(2, 100)),
+                                      [](const std::tuple<int, int, int, int, int, int>& t) {
+                                        const auto [bx, by, lots, block, street, setback_mm] = t;
+                                        return nlohmann::json{{"blocks_x", bx},
+                                                              {"blocks_y", by},
+                                                              {"buildings_per_block", lots},
+                                                              {"block_size", block},
+                                                              {"street_width", street},
+                                                              {"setback", setback_mm / 1000.0},
+                                                              {"width_jitter", 0.0},
+                                                              {"thin_fraction", 0.0}};
+                                      }));
+}
+
 }  // namespace cullcheck::generators::rcgen

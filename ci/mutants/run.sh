@@ -53,7 +53,7 @@ scratch=$(mktemp -d)
 # "grazing": the hard cases written for it (properties/grazing_*_test.cpp), run first (fast).
 region_checks() {
   cat <<CHECKS
-grazing|GrazingDiscs.$1ShrinkingHolds|grazing_region_test|$tests/grazing_region_test --gtest_filter=GrazingDiscs.$1ShrinkingHolds
+grazing|GrazingDiscs.$1Shrinking*|grazing_region_test|$tests/grazing_region_test --gtest_filter=GrazingDiscs.$1Shrinking*
 base|RegionShrinking.$1ShrinkingHoldsOverTheDisc|region_shrinking_test|$tests/region_shrinking_test --gtest_filter=RegionShrinking.$1ShrinkingHoldsOverTheDisc
 CHECKS
 }
@@ -75,6 +75,7 @@ CHECKS
     minkowski) region_checks Minkowski ;;
     corrected) region_checks CorrectedAdjustable ;;
     view_cell) cat <<CHECKS
+grazing|ViewCell.PvsHoldsFromEyesLookingDownANarrowGap|view_cell_test|$tests/view_cell_test --gtest_filter=ViewCell.PvsHoldsFromEyesLookingDownANarrowGap
 base|ViewCell.PvsHoldsFromEveryEyeInTheCell|view_cell_test|$tests/view_cell_test --gtest_filter=ViewCell.PvsHoldsFromEveryEyeInTheCell
 CHECKS
       ;;
