@@ -70,10 +70,11 @@ std::optional<Miss> region_miss(const std::string& method, const Scene& scene, c
   const std::vector<ObjectId> pvs = engine->cull_region({r.scene_case.camera, r.radius, r.turn}).pvs;
   const oracle::Oracle truth(scene);
   for (const Camera& v : sample_viewpoints(r)) {
-    const oracle::OracleAnswer seen = truth.visible_set(v, property_oracle());
-    for (ObjectId id : seen.visible)
-      if (!std::binary_search(pvs.begin(), pvs.end(), id))
-        return Miss{v, id, seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model};
+    oracle::OracleAnswer seen = truth.visible_set(v, property_oracle());
+    if (const std::vector<ObjectId> missed = confirmed_misses(truth, seen, v, pvs); !missed.empty()) {
+      const ObjectId id = missed.front();
+      return Miss{v, id, seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model};
+    }
   }
   return std::nullopt;
 }
