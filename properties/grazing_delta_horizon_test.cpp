@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <sstream>
 
 #include "engine/method.hpp"
@@ -54,6 +55,32 @@ rc::Gen<std::vector<Move>> guard_scale_moves() {
   return rc::gen::mapcat(rc::gen::inRange(1, 7), [](int n) { return rc::gen::container<std::vector<Move>>(n, guard_scale_move()); });
 }
 
+// The guarded ΔH along the "moves" path `params` in `scene` (from `spec`), held to the oracle at
+// every frame; `seen_at(f, visible)` is given the oracle's visible set at each frame it checks.
+// With `open`, stops at the first frame whose eye is inside a building (a step into a wall:
+// nothing to hold from there on).
+void hold_along_path(const generators::SceneSpec& spec, const Scene& scene, const nlohmann::json& params,
+                     const generators::OpenSpace* open,
+                     const std::function<void(std::size_t, const std::vector<ObjectId>&)>& seen_at = {}) {
+  const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
+  auto method = make_method("delta_h_guarded", scene);
+  const oracle::Oracle truth(scene);
+  for (std::size_t f = 0; f < path.frames.size(); ++f) {
+    const Camera& camera = path.frames[f];
+    const std::vector<ObjectId> pvs = method->cull(camera).pvs;
+    if (open && open->inside_building(camera.position)) break;
+    oracle::OracleAnswer seen = truth.visible_set(camera, property_oracle());
+    if (seen_at) seen_at(f, seen.visible);
+    if (const auto miss = properties::oracle_miss(truth, seen, camera, pvs)) {
+      std::ostringstream replay;
+      replay << "replay: cullcheck verify " << generators::replay_args(spec) << " --path-kind moves --path-params '"
+             << params.dump() << "' --method delta_h_guarded --spacing 3 --frustum-resolution 128";
+      RC_FAIL("frame " + std::to_string(f) + ": delta_h_guarded culls building " + std::to_string(miss->building) +
+              " the oracle sees (" + miss->witness + ")\n" + replay.str());
+    }
+  }
+}
+
 // The guarded ΔH along `moves` from the grazing eye of `draw`, held to the oracle at every frame.
 void holds_along_moves(properties::GrazingDraw draw, const std::vector<Move>& moves) {
   const generators::SceneSpec spec =
@@ -65,22 +92,7 @@ void holds_along_moves(properties::GrazingDraw draw, const std::vector<Move>& mo
   const properties::Grazing g = properties::grazing_camera(scene, open, draw);
   RC_TAG(g.usable ? "grazing start" : "no usable start");
   if (!g.usable) return;
-  const nlohmann::json params = generators::moves_params(g.camera, moves);
-  const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
-  auto method = make_method("delta_h_guarded", scene);
-  const oracle::Oracle truth(scene);
-  for (std::size_t f = 0; f < path.frames.size(); ++f) {
-    const Camera& camera = path.frames[f];
-    const std::vector<ObjectId> pvs = method->cull(camera).pvs;
-    if (open.inside_building(camera.position)) break;  // a step into a wall: nothing to hold from here on
-    if (const auto miss = properties::oracle_miss(truth, camera, pvs)) {
-      std::ostringstream replay;
-      replay << "replay: cullcheck verify " << generators::replay_args(spec) << " --path-kind moves --path-params '"
-             << params.dump() << "' --method delta_h_guarded --spacing 3 --frustum-resolution 128";
-      RC_FAIL("frame " + std::to_string(f) + ": delta_h_guarded culls building " + std::to_string(miss->building) +
-              " the oracle sees (" + miss->witness + ")\n" + replay.str());
-    }
-  }
+  hold_along_path(spec, scene, generators::moves_params(g.camera, moves), &open);
 }
 
 RC_GTEST_PROP(GrazingEyes, GuardedDeltaHorizonKeepsWhatAStepUncovers, ()) {
@@ -128,24 +140,11 @@ TEST(GrazingEyes, GuardedDeltaHorizonKeepsAFarRoofARiseLiftsOverANearOne) {
     if (!g.usable || !(g.camera.position.z > 0.05)) return;
     std::vector<Move> moves{{MoveKind::rise, rise}};
     if (back_too) moves.push_back({MoveKind::backward, 0.45});
-    const nlohmann::json params = generators::moves_params(g.camera, moves);
-    const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
-    auto method = make_method("delta_h_guarded", scene);
-    const oracle::Oracle truth(scene);
     std::vector<bool> target_seen;
-    for (std::size_t f = 0; f < path.frames.size(); ++f) {
-      const Camera& camera = path.frames[f];
-      const std::vector<ObjectId> pvs = method->cull(camera).pvs;
-      const std::vector<ObjectId> seen = truth.visible_set(camera, property_oracle()).visible;
-      target_seen.push_back(std::binary_search(seen.begin(), seen.end(), g.target));
-      if (const auto miss = properties::oracle_miss(truth, camera, pvs)) {
-        std::ostringstream replay;
-        replay << "replay: cullcheck verify " << generators::replay_args(spec) << " --path-kind moves --path-params '"
-               << params.dump() << "' --method delta_h_guarded --spacing 3 --frustum-resolution 128";
-        RC_FAIL("frame " + std::to_string(f) + ": delta_h_guarded culls building " + std::to_string(miss->building) +
-                " the oracle sees (" + miss->witness + ")\n" + replay.str());
-      }
-    }
+    hold_along_path(spec, scene, generators::moves_params(g.camera, moves), nullptr,
+                    [&](std::size_t, const std::vector<ObjectId>& seen) {
+                      target_seen.push_back(std::binary_search(seen.begin(), seen.end(), g.target));
+                    });
     const bool up = !target_seen.front() && target_seen.back();
     RC_TAG(up ? "the rise uncovers the far roof" : "no roof uncovered");
     uncovered += up;
@@ -174,26 +173,10 @@ TEST(GrazingEyes, GuardedDeltaHorizonKeepsALowBuildingBeforeADeepFacade) {
     ++cases;
     RC_TAG(c.reached ? "low building before a facade" : "no such pair");
     if (!c.reached) return;
-    const nlohmann::json params = generators::moves_params(c.grazing.camera, {move});
-    const CameraPath path = generators::make_camera_path("moves", scene, 0, params);
-    auto method = make_method("delta_h_guarded", scene);
-    const oracle::Oracle truth(scene);
-    for (std::size_t f = 0; f < path.frames.size(); ++f) {
-      const Camera& camera = path.frames[f];
-      const std::vector<ObjectId> pvs = method->cull(camera).pvs;
-      if (open.inside_building(camera.position)) break;
-      if (f == 0) {
-        const std::vector<ObjectId> seen = truth.visible_set(camera, property_oracle()).visible;
-        reached += std::binary_search(seen.begin(), seen.end(), c.grazing.target);
-      }
-      if (const auto miss = properties::oracle_miss(truth, camera, pvs)) {
-        std::ostringstream replay;
-        replay << "replay: cullcheck verify " << generators::replay_args(spec) << " --path-kind moves --path-params '"
-               << params.dump() << "' --method delta_h_guarded --spacing 3 --frustum-resolution 128";
-        RC_FAIL("frame " + std::to_string(f) + ": delta_h_guarded culls building " + std::to_string(miss->building) +
-                " the oracle sees (" + miss->witness + ")\n" + replay.str());
-      }
-    }
+    hold_along_path(spec, scene, generators::moves_params(c.grazing.camera, {move}), &open,
+                    [&](std::size_t f, const std::vector<ObjectId>& seen) {
+                      if (f == 0) reached += std::binary_search(seen.begin(), seen.end(), c.grazing.target);
+                    });
   });
   EXPECT_TRUE(held);
   std::printf("low building before a deep facade, seen by the oracle: %zu of %zu cases\n", reached, cases);

@@ -33,6 +33,18 @@ rc::Gen<generators::SceneSpec> grazing_scenes() {
                         rcgen::tall_occluder_spec(1.7));
 }
 
+// Fails the property, with a replay, when `pvs` lacks a building the oracle's answer `seen` holds.
+void require_held(const std::string& method_name, const generators::SceneSpec& spec, const Camera& camera,
+                  const oracle::Oracle& truth, oracle::OracleAnswer& seen, const std::vector<ObjectId>& pvs) {
+  if (const auto miss = properties::oracle_miss(truth, seen, camera, pvs)) {
+    std::ostringstream replay;
+    replay << "replay: cullcheck verify " << generators::SceneCase{spec, camera} << " --method " << method_name
+           << " --spacing 3 --frustum-resolution 128";
+    RC_FAIL(method_name + " culls building " + std::to_string(miss->building) + " the oracle sees (" + miss->witness + ")\n" +
+            replay.str());
+  }
+}
+
 void check_at(const std::string& method_name, const generators::SceneSpec& spec, const Scene& scene, const properties::Grazing& g) {
   RC_TAG(g.usable ? "usable eye" : "no usable eye");
   if (!g.usable) return;
@@ -40,13 +52,8 @@ void check_at(const std::string& method_name, const generators::SceneSpec& spec,
   const std::vector<ObjectId> pvs = method->cull(g.camera).pvs;
   RC_TAG(std::binary_search(pvs.begin(), pvs.end(), g.target) ? "target kept" : "target culled");
   const oracle::Oracle truth(scene);
-  if (const auto miss = properties::oracle_miss(truth, g.camera, pvs)) {
-    std::ostringstream replay;
-    replay << "replay: cullcheck verify " << generators::SceneCase{spec, g.camera} << " --method " << method_name
-           << " --spacing 3 --frustum-resolution 128";
-    RC_FAIL(method_name + " culls building " + std::to_string(miss->building) + " the oracle sees (" + miss->witness + ")\n" +
-            replay.str());
-  }
+  oracle::OracleAnswer seen = truth.visible_set(g.camera, property_oracle());
+  require_held(method_name, spec, g.camera, truth, seen, pvs);
 }
 
 void check_at_grazing_eye(const std::string& method_name, const GrazingDraw& draw) {
@@ -124,15 +131,9 @@ bool holds_and_sees_target(const std::string& method_name, const generators::Sce
   auto method = make_method(method_name, scene);
   const std::vector<ObjectId> pvs = method->cull(g.camera).pvs;
   const oracle::Oracle truth(scene);
-  if (const auto miss = properties::oracle_miss(truth, g.camera, pvs)) {
-    std::ostringstream replay;
-    replay << "replay: cullcheck verify " << generators::SceneCase{spec, g.camera} << " --method " << method_name
-           << " --spacing 3 --frustum-resolution 128";
-    RC_FAIL(method_name + " culls building " + std::to_string(miss->building) + " the oracle sees (" + miss->witness + ")\n" +
-            replay.str());
-  }
-  const std::vector<ObjectId> seen = truth.visible_set(g.camera, property_oracle()).visible;
-  return std::binary_search(seen.begin(), seen.end(), g.target);
+  oracle::OracleAnswer seen = truth.visible_set(g.camera, property_oracle());
+  require_held(method_name, spec, g.camera, truth, seen, pvs);
+  return std::binary_search(seen.visible.begin(), seen.visible.end(), g.target);
 }
 
 // A low building standing wholly in front of a taller building's long facade, seen by an eye

@@ -18,13 +18,19 @@ struct OracleMiss {
   std::string witness;  // the witness ray, or the exact model's name
 };
 
-inline std::optional<OracleMiss> oracle_miss(const oracle::Oracle& truth, const Camera& viewpoint,
+// The same for an oracle answer the caller already has (`seen`, at `viewpoint`).
+inline std::optional<OracleMiss> oracle_miss(const oracle::Oracle& truth, oracle::OracleAnswer& seen, const Camera& viewpoint,
                                              const std::vector<ObjectId>& pvs) {
-  oracle::OracleAnswer seen = truth.visible_set(viewpoint, property_oracle());
   const std::vector<ObjectId> missed = confirmed_misses(truth, seen, viewpoint, pvs);
   if (missed.empty()) return std::nullopt;
   const ObjectId id = missed.front();
   return OracleMiss{id, seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model};
+}
+
+inline std::optional<OracleMiss> oracle_miss(const oracle::Oracle& truth, const Camera& viewpoint,
+                                             const std::vector<ObjectId>& pvs) {
+  oracle::OracleAnswer seen = truth.visible_set(viewpoint, property_oracle());
+  return oracle_miss(truth, seen, viewpoint, pvs);
 }
 
 }  // namespace cullcheck::properties
