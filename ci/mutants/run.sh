@@ -53,6 +53,7 @@ scratch=$(mktemp -d)
 # "grazing": the hard cases written for it (properties/grazing_*_test.cpp), run first (fast).
 region_checks() {
   cat <<CHECKS
+grazing|DrawnDiscs.*|region_drawn_scenes_test|$tests/region_drawn_scenes_test
 grazing|GrazingDiscs.$1Shrinking*|grazing_region_test|$tests/grazing_region_test --gtest_filter=GrazingDiscs.$1Shrinking*
 base|RegionShrinking.$1ShrinkingHoldsOverTheDisc|region_shrinking_test|$tests/region_shrinking_test --gtest_filter=RegionShrinking.$1ShrinkingHoldsOverTheDisc
 CHECKS

@@ -101,10 +101,16 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                           const std::vector<std::optional<ConvexSpan>>& spans) {
                         const Building& building = scene_.buildings[index];
                         const Vec2 e = plan(eye);
-                        const bool may_be_clipped = distance < unclipped;
+                        // sweep_region hands every eye's guard (the centre's unclipped distance
+                        // + ε). The published variant keeps the centre's: the thesis's equations
+                        // know no near plane, and the wider guard would drop a wall crossing the
+                        // disc as an occluder, hiding the ledger's refutation of Eq. 4-5 behind a
+                        // rule of ours (kept case slab_across_the_disc).
+                        const double guard = corrected_ ? unclipped : unclipped - region.radius;
+                        const bool may_be_clipped = distance < guard;
                         for (std::size_t p = 0; p < building.prisms.size(); ++p) {
                           const ConvexVerticalPrism& prism = building.prisms[p];
-                          if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
+                          if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < guard)) continue;
                           if (!corrected_) {
                             const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
                             const double farthest = max_vertex_distance(prism.ring, e);

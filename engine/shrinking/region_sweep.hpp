@@ -32,7 +32,14 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
   if (passive) pending.record_into(&log);
   sweep_horizon(
       scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
-      [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); }, cast,
+      [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); },
+      // The near-plane guard for every eye of the disc, not the centre's alone: a CVP nearer
+      // than the centre's unclipped distance + ε may lie in front of another eye's near plane,
+      // and clipped geometry hides nothing (properties/region_drawn_scenes_test.cpp).
+      [&](ShadowQueue& queue, std::uint32_t index, Vec3 eye, double distance, double unclipped,
+          const std::vector<std::optional<ConvexSpan>>& spans) {
+        cast(queue, index, eye, distance, unclipped + region.radius, spans);
+      },
       [&](std::uint32_t b) { return known && (*known)[b] != 0; }, pending, result);
   std::sort(result.pvs.begin(), result.pvs.end());
   if (passive) result.passive = passive->visible(region, log, known_passive, result.stats);
