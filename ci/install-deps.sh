@@ -10,6 +10,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspng-dev
   python3
   libtinygltf-dev libtinyobjloader-dev libassimp-dev
+  libproj-dev proj-data  # footprint files' CRSs (core/formats/crs_projection.cpp)
   clang-14 libclang-rt-14-dev llvm-14  # the sanitize preset: ASan, UBSan, libFuzzer, llvm-symbolizer
 )
 missing=()

@@ -124,6 +124,19 @@ int main(int argc, char** argv) {
       put("fuzz_obj", name + ".obj", file_bytes(obj));
       fs::remove(obj);
     }
+    // GeoJSON footprints: local metres with storeys, holes, a MultiPolygon, a spike and a bow tie;
+    // longitude/latitude; a named UTM CRS.
+    put("fuzz_geojson", "local.geojson",
+        R"({"type":"FeatureCollection","features":[)"
+        R"({"type":"Feature","properties":{"floors":3},"geometry":{"type":"Polygon","coordinates":[[[0,0],[10,0],[10,10],[0,10],[0,0]],[[2,2],[3,2],[3,3],[2,2]]]}},)"
+        R"({"type":"Feature","properties":{"floors":"2"},"geometry":{"type":"MultiPolygon","coordinates":[[[[20,0],[24,0],[24,4],[20,0]]],[[[30,0],[34,0],[34,0],[34,4],[38,4],[34,4],[30,4],[30,0]]]]}},)"
+        R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[0,20],[5,25],[5,20],[0,25],[0,20]]]}},)"
+        R"({"type":"Feature","properties":{"floors":1},"geometry":{"type":"Point","coordinates":[1,1]}}]})");
+    put("fuzz_geojson", "lonlat.geojson",
+        R"({"type":"Feature","properties":{"height":12},"geometry":{"type":"Polygon","coordinates":[[[-71.0,42.0],[-70.999,42.0],[-70.999,42.001],[-71.0,42.0]]]}})");
+    put("fuzz_geojson", "utm.geojson",
+        R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::26919"}},"features":[)"
+        R"({"type":"Feature","properties":{"height":9.5},"geometry":{"type":"Polygon","coordinates":[[[329000.5,4691000.25],[329020.5,4691000.25],[329020.5,4691020.25],[329000.5,4691000.25]]]}}]})");
     // Hand-written shapes the writers never produce: y-up OBJ with polygons and negative indices.
     put("fuzz_obj", "polygons.obj", "o quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\ng tri\nv 0 0 1\nf -1 -2 -3\n");
     put("fuzz_scene_json", "version2_named.json",

@@ -10,12 +10,13 @@
 
 namespace cullcheck {
 
-Scene SceneSource::load() const {
+Scene SceneSource::load(formats::ImportReport* report) const {
   if (!file.empty()) {
     formats::ImportOptions options;
     options.ids = mesh_ids;
     options.obj_up = obj_up;
-    return formats::read_scene_file_any(file, options);
+    options.footprints = footprints;
+    return formats::read_scene_file_any(file, options, report);
   }
   nlohmann::json params;
   try {
@@ -31,6 +32,12 @@ std::string SceneSource::replay_flags() const {
     std::string flags = "--scene " + shell_quote(file);
     if (mesh_ids != formats::IdSource::node) flags += " --mesh-ids mesh";
     if (obj_up != formats::UpAxis::z) flags += " --obj-up y";
+    const formats::FootprintOptions defaults;
+    if (!footprints.height_attribute.empty()) flags += " --height-attribute " + shell_quote(footprints.height_attribute);
+    if (!footprints.storeys_attribute.empty()) flags += " --storeys-attribute " + shell_quote(footprints.storeys_attribute);
+    if (footprints.storey_height != defaults.storey_height) flags += " --storey-height " + round_trip_text(footprints.storey_height);
+    if (footprints.missing_height) flags += " --missing-height " + round_trip_text(*footprints.missing_height);
+    if (!footprints.crs.empty()) flags += " --crs " + shell_quote(footprints.crs);
     return flags;
   }
   std::string flags = "--generator " + generator + " --seed " + std::to_string(seed);

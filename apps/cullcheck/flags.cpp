@@ -22,7 +22,8 @@ void SceneFlags::add(CLI::App& app) {
   app.add_option("--params", source.parameters_json, "Generator parameters as JSON, overlaid on its defaults")
       ->capture_default_str();
   app.add_option("--scene", source.file,
-                 "Read the scene from this file instead of generating it: cullcheck scene JSON, glTF 2.0 (.glb, .gltf) or OBJ");
+                 "Read the scene from this file instead of generating it: cullcheck scene JSON, glTF 2.0 (.glb, .gltf), OBJ, "
+                 "or GeoJSON building footprints (.geojson; see --height-attribute, --storeys-attribute, --crs)");
   const std::map<std::string, formats::IdSource> id_sources{{"node", formats::IdSource::node}, {"mesh", formats::IdSource::mesh}};
   app.add_option("--mesh-ids", source.mesh_ids, "glTF scenes: one object per node (node, the default) or per glTF mesh (mesh)")
       ->transform(CLI::CheckedTransformer(id_sources, CLI::ignore_case).description(""))
@@ -31,6 +32,20 @@ void SceneFlags::add(CLI::App& app) {
   app.add_option("--obj-up", source.obj_up, "OBJ scenes: the file's up axis, y or z (default z)")
       ->transform(CLI::CheckedTransformer(axes, CLI::ignore_case).description(""))
       ->type_name("y|z");
+  formats::FootprintOptions& f = source.footprints;
+  app.add_option("--height-attribute", f.height_attribute,
+                 "Footprint files (GeoJSON): the property holding a building's height in metres (default: height)");
+  app.add_option("--storeys-attribute", f.storeys_attribute,
+                 "Footprint files: the property holding a storey count instead, times --storey-height");
+  app.add_option("--storey-height", f.storey_height, "Footprint files: metres a storey")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-3, 1e3));
+  app.add_option("--missing-height", f.missing_height,
+                 "Footprint files: height (m) for a feature without a usable one (default: skip it; the import counts it)")
+      ->check(CLI::Range(1e-3, 1e4));
+  app.add_option("--crs", f.crs,
+                 "Footprint files: the coordinates' CRS (e.g. EPSG:26919), overriding the file's; local = plan metres as "
+                 "they are (default: the file's crs member, else WGS84 longitude/latitude)");
 }
 
 void CoordinateFlags::add(CLI::App& app, const std::string& applies_to) {

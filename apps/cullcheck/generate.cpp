@@ -4,6 +4,7 @@
 
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
+#include "core/formats/footprint_formats.hpp"
 #include "core/formats/mesh_formats.hpp"
 #include "core/scene_io.hpp"
 
@@ -24,7 +25,12 @@ Runner add_generate(CLI::App& app) {
   sub->add_option("--glb", f->glb, "Also write the scene as glTF 2.0 binary (one node per object, named by its id)");
   sub->add_option("--path-output", f->path_output, "Also write a camera path (see --path-kind) to this file");
   return [f] {
-    const Scene scene = f->scene.source.load();
+    formats::ImportReport imported;
+    const Scene scene = f->scene.source.load(&imported);
+    if (imported.features > 0) {
+      std::cout << "imported " << formats::footprint_import_summary(imported) << "\n";
+      for (const std::string& n : imported.notes) std::cout << "  " << n << "\n";
+    }
     write_scene_file(scene, f->output);
     std::cout << "wrote " << f->output << ": " << scene.buildings.size() << " buildings, " << scene.meshes.size()
               << " mesh objects, " << scene.triangle_count() << " triangles\n";

@@ -45,29 +45,10 @@
 #include <string>
 #include <vector>
 
+#include "core/formats/import_options.hpp"
 #include "core/scene.hpp"
 
 namespace cullcheck::formats {
-
-// glTF: one object per node that has a mesh, or one per glTF mesh (all its instances merged).
-enum class IdSource { node, mesh };
-// OBJ files have no stated up axis: cullcheck's own exports are z up, most modelling tools' y up.
-enum class UpAxis { y, z };
-
-struct ImportOptions {
-  IdSource ids = IdSource::node;
-  UpAxis obj_up = UpAxis::z;
-  bool detect_prisms = true;  // false: every object stays a MeshObject (given prisms too)
-};
-
-struct ImportReport {
-  std::size_t objects = 0;
-  std::size_t prisms_detected = 0;  // meshes found to be vertical prisms (as_vertical_prism)
-  std::size_t prisms_given = 0;     // buildings taken from extras footprint/height
-  std::size_t meshes_kept = 0;
-  std::size_t degenerate_triangles_dropped = 0;
-  std::vector<std::string> notes;   // what was skipped and why (line primitives, images, ...)
-};
 
 // Limits beside core's kMax* (core/scene_io.hpp): absurd files are errors, not out-of-memory.
 inline constexpr std::size_t kMaxSceneFileBytes = 0xFFFFFFFF;  // 4 GiB - 1 (.glb's own limit; tinygltf's too)
@@ -80,7 +61,9 @@ Scene read_obj(const std::string& path, const ImportOptions& options = {}, Impor
 inline std::string building_node_name(ObjectId id) { return "building_" + std::to_string(id); }
 inline std::string mesh_node_name(ObjectId id) { return "mesh_" + std::to_string(id); }
 
-// By extension (case-insensitive): .json, .glb, .gltf, .obj; anything else is an InputError.
+// By extension (case-insensitive): .json (cullcheck's scene JSON, or GeoJSON when the file says
+// "FeatureCollection" or "Feature" near its start), .geojson, .glb, .gltf, .obj; anything else is
+// an InputError.
 Scene read_scene_file_any(const std::string& path, const ImportOptions& options = {}, ImportReport* report = nullptr);
 
 // Both write a temporary file and rename it: a failure never truncates an existing output.

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/errors.hpp"
+#include "core/formats/footprint_formats.hpp"
 #include "core/formats/mesh_formats.hpp"
 #include "core/scene_io.hpp"
 
@@ -12,11 +13,16 @@ namespace cullcheck::formats {
 Scene read_scene_file_any(const std::string& path, const ImportOptions& options, ImportReport* report) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".json") return read_scene_file(path);
+  if (ext == ".geojson") return read_geojson(path, options.footprints, report);
+  if (ext == ".json") {
+    const std::string text = read_text_file(path);
+    if (looks_like_geojson(text)) return geojson_from_text(text, options.footprints, report, "file " + path);
+    return read_scene_file(path);
+  }
   if (ext == ".glb" || ext == ".gltf") return read_gltf(path, options, report);
   if (ext == ".obj") return read_obj(path, options, report);
   throw InputError("file " + path, "(extension)",
-                   "unknown scene file type '" + ext + "' (known: .json, .glb, .gltf, .obj)");
+                   "unknown scene file type '" + ext + "' (known: .json, .geojson, .glb, .gltf, .obj)");
 }
 
 }  // namespace cullcheck::formats
