@@ -107,9 +107,13 @@ void validate(const PlazaCrossingParams& p);
 // Walks the streets of the Manhattan grid that manhattan_city(city, ...) builds (any seed:
 // streets do not depend on the city's seed).
 CameraPath street_walk(const ManhattanParams& city, const StreetWalkParams& walk, std::uint64_t seed);
-// The same for a scene made by manhattan, plaza, default, thesis or openings (streets read from its provenance);
-// InputError for any other scene.
+// The same for a scene made by manhattan, plaza, default, thesis or openings (streets read from its
+// provenance); any other scene (irregular, scatter, an imported city) gets free_space_walk.
 CameraPath street_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed);
+// A pedestrian walk through the free-space cells of any scene (free_space_walk.cpp): the same
+// segments (forward, backward, sideways, stops) along a random route from cell centre to shared
+// edge to cell centre, street_margin clear of every wall. InputError when no cell is walkable.
+CameraPath free_space_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed);
 CameraPath fly_through(const Scene& scene, const FlyThroughParams& fly, std::uint64_t seed);
 // InputError unless the scene has a plaza (plaza or default generator).
 CameraPath plaza_crossing(const Scene& scene, const PlazaCrossingParams& walk);

@@ -246,9 +246,7 @@ CameraPath street_walk(const ManhattanParams& city, const StreetWalkParams& walk
 
 CameraPath street_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed) {
   const std::optional<ManhattanParams> city = manhattan_params_of(scene);
-  if (!city)
-    throw InputError("path", "kind", "street_walk needs a scene from the manhattan, plaza, default, thesis or openings generator (this one is from '" +
-                                         scene.provenance.generator + "')");
+  if (!city) return free_space_walk(scene, walk, seed);
   return street_walk(*city, walk, seed);
 }
 

@@ -300,54 +300,88 @@ ManhattanParams walk_city() {
   return p;
 }
 
+// What a pedestrian walk must be frame by frame (asserted here), and what it did (counted):
+// valid cameras at the eye height, never inside a building and `margin` clear of every wall,
+// each frame standing or moving exactly one step (at most one with `cut_steps`: a free-space walk
+// stops short at the bends of its route), the view turning less than 0.25 rad a frame.
+struct WalkCounts {
+  int moving = 0, still = 0, lateral = 0, backward = 0, turning = 0, wraps = 0;
+};
+WalkCounts check_walk(const CameraPath& path, const OpenSpace& open, const StreetWalkParams& walk, bool cut_steps = false) {
+  const double step = walk.walking_speed / walk.frames_per_second;
+  WalkCounts n;
+  EXPECT_EQ(path.frames.size(), static_cast<std::size_t>(walk.frames));
+  EXPECT_EQ(path.kind, "street_walk");
+  EXPECT_EQ(path.frames_per_second, walk.frames_per_second);
+  for (std::size_t i = 0; i < path.frames.size(); ++i) {
+    const Camera& c = path.frames[i];
+    EXPECT_NO_THROW(validate(c));
+    EXPECT_EQ(c.position.z, walk.eye_height);
+    EXPECT_TRUE(c.yaw >= 0.0 && c.yaw < kTwoPi) << "frame " << i;
+    if (open.inside_building(c.position) || !open.is_open(plan(c.position), walk.street_margin - 1e-6)) {
+      ADD_FAILURE() << "frame " << i << " is inside a building or nearer a wall than the margin";
+      return n;
+    }
+    if (i == 0) continue;
+    const Camera& prev = path.frames[i - 1];
+    const Vec2 d = plan(c.position) - plan(prev.position);
+    const double dist = length(d);
+    if (dist == 0.0) {
+      ++n.still;
+    } else {
+      if (cut_steps) EXPECT_LE(dist, step + 1e-9) << "frame " << i;
+      else EXPECT_NEAR(dist, step, 1e-9) << "frame " << i;
+      ++n.moving;
+      const Vec2 forward{std::cos(c.yaw), std::sin(c.yaw)};
+      if (std::abs(dot(d, forward)) < 1e-9) ++n.lateral;
+      if (dot(d, forward) < -0.9 * step) ++n.backward;
+    }
+    const double turn = shortest_turn(prev.yaw, c.yaw);
+    EXPECT_LT(std::abs(turn), 0.25) << "yaw jumps at frame " << i;
+    if (turn != 0.0) ++n.turning;
+    if (std::abs(c.yaw - prev.yaw) > kPi) ++n.wraps;  // crossed the 0 / 2*pi seam
+  }
+  return n;
+}
+
 TEST(StreetWalk, StepsAreWalkingSpeedTurnsAreSmoothEyeStaysInTheStreet) {
   const ManhattanParams city = walk_city();
   StreetWalkParams walk;
   walk.frames = 6000;
-  const double step = walk.walking_speed / walk.frames_per_second;
   int wraps = 0;
   for (std::uint64_t seed : {1ULL, 2ULL, 3ULL, 4ULL}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const Scene scene = plaza_city(city, seed);
-    const OpenSpace open(scene);
-    const CameraPath path = street_walk(city, walk, seed);
-    ASSERT_EQ(path.frames.size(), 6000u);
-    EXPECT_EQ(path.kind, "street_walk");
-    EXPECT_EQ(path.frames_per_second, 30.0);
-    int moving = 0, still = 0, lateral = 0, backward = 0, turning = 0;
-    for (std::size_t i = 0; i < path.frames.size(); ++i) {
-      const Camera& c = path.frames[i];
-      ASSERT_NO_THROW(validate(c));
-      ASSERT_EQ(c.position.z, 1.7);
-      ASSERT_GE(c.yaw, 0.0);
-      ASSERT_LT(c.yaw, kTwoPi);
-      ASSERT_FALSE(open.inside_building(c.position)) << "frame " << i;
-      ASSERT_TRUE(open.is_open(plan(c.position), walk.street_margin - 1e-6)) << "frame " << i;
-      if (i == 0) continue;
-      const Camera& prev = path.frames[i - 1];
-      const Vec2 d = plan(c.position) - plan(prev.position);
-      const double dist = length(d);
-      if (dist == 0.0) {
-        ++still;
-      } else {
-        ASSERT_NEAR(dist, step, 1e-9) << "frame " << i;
-        ++moving;
-        const Vec2 forward{std::cos(c.yaw), std::sin(c.yaw)};
-        if (std::abs(dot(d, forward)) < 1e-9) ++lateral;
-        if (dot(d, forward) < -0.9 * step) ++backward;
-      }
-      const double turn = shortest_turn(prev.yaw, c.yaw);
-      ASSERT_LT(std::abs(turn), 0.25) << "yaw jumps at frame " << i;
-      if (turn != 0.0) ++turning;
-      if (std::abs(c.yaw - prev.yaw) > kPi) ++wraps;  // crossed the 0 / 2*pi seam
-    }
-    EXPECT_GT(moving, 3000);
-    EXPECT_GT(still, 100);
-    EXPECT_GT(lateral, 50) << "sideways steps";
-    EXPECT_GT(backward, 50);
-    EXPECT_GT(turning, 100);
+    const WalkCounts n = check_walk(street_walk(city, walk, seed), OpenSpace(scene), walk);
+    EXPECT_GT(n.moving, 3000);
+    EXPECT_GT(n.still, 100);
+    EXPECT_GT(n.lateral, 50) << "sideways steps";
+    EXPECT_GT(n.backward, 50);
+    EXPECT_GT(n.turning, 100);
+    wraps += n.wraps;
   }
   EXPECT_GT(wraps, 0) << "some turn crosses the azimuth wrap";
+}
+
+// Scenes without a street grid (irregular and scatter cities, imported ones) are walked through
+// their free-space cells (free_space_walk.cpp), with the same segments and the same guarantees.
+TEST(StreetWalk, FreeSpaceWalkOnScenesWithoutAGrid) {
+  StreetWalkParams walk;
+  walk.frames = 3000;
+  for (const auto& [generator, seed] : std::vector<std::pair<std::string, std::uint64_t>>{{"irregular", 5}, {"scatter", 2}}) {
+    SCOPED_TRACE(generator);
+    const Scene scene = make_city(generator, seed, {{"count", 150}});
+    const CameraPath path = street_walk(scene, walk, 7);
+    const WalkCounts n = check_walk(path, OpenSpace(scene), walk, /*cut_steps=*/true);
+    EXPECT_GT(n.moving, 1500);
+    EXPECT_GT(n.still, 50);
+    EXPECT_GT(n.lateral, 20) << "sideways steps";
+    EXPECT_GT(n.backward, 20);
+    EXPECT_GT(n.turning, 100);
+    // Deterministic, and a different seed walks elsewhere.
+    EXPECT_EQ(path_to_json_text(path), path_to_json_text(free_space_walk(scene, walk, 7)));
+    EXPECT_NE(path_to_json_text(path), path_to_json_text(street_walk(scene, walk, 8)));
+  }
 }
 
 TEST(StreetWalk, DeterministicRoundTripsAndReadsStreetsFromTheScene) {
@@ -361,9 +395,12 @@ TEST(StreetWalk, DeterministicRoundTripsAndReadsStreetsFromTheScene) {
   EXPECT_EQ(path_to_json_text(back), path_to_json_text(a));
   const OpenSpace open(scene);
   for (const Camera& c : a.frames) ASSERT_FALSE(open.inside_building(c.position));
-  // Only Manhattan-family scenes have streets to walk.
-  const Scene scatter = make_city("scatter", 1, {{"count", 10}});
-  EXPECT_THROW(street_walk(scatter, walk, 1), InputError);
+  // A scene with no open ground to walk on.
+  Scene closed;
+  closed.buildings = {box_building(0, 0, 0, 100, 100, 10)};
+  StreetWalkParams wide = walk;
+  wide.street_margin = 200;
+  EXPECT_THROW(street_walk(closed, wide, 1), InputError);
   EXPECT_THROW(make_camera_path("street_walk", scene, 1, {{"frames", 0}}), InputError);
   EXPECT_THROW(make_camera_path("teleport", scene, 1, json::object()), InputError);
   EXPECT_EQ(make_camera_path("street_walk", scene, 11, json::object()).frames.size(), 1800u);

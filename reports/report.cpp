@@ -101,6 +101,20 @@ nlohmann::json build_report(const ReportInputs& in) {
                      {"triangle_count", scene.triangle_count()},
                      {"bounds", scene.object_count() == 0 ? json(nullptr) : json{{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}}},
                      {"replay_flags", in.source.replay_flags()}};
+  if (in.import && in.import->features > 0) {  // every feature of a footprint file accounted for
+    const formats::ImportReport& r = *in.import;
+    report["scene"]["import"] = {{"features", r.features},
+                                 {"buildings", r.buildings},
+                                 {"parts_split", r.parts_split},
+                                 {"holes_filled", r.holes_filled},
+                                 {"rings_repaired", r.rings_repaired},
+                                 {"skipped_invalid", r.skipped_invalid},
+                                 {"skipped_no_height", r.skipped_no_height},
+                                 {"heights_defaulted", r.heights_defaulted},
+                                 {"skipped_not_polygon", r.skipped_not_polygon},
+                                 {"crs", r.crs},
+                                 {"notes", r.notes}};
+  }
   report["path"] = {{"kind", in.path->kind},
                     {"seed", in.path->seed},
                     {"parameters", json::parse(in.path_parameters_json)},

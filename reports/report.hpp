@@ -25,6 +25,7 @@ inline constexpr int kReportSchemaVersion = 1;
 struct ReportInputs {
   const Scene* scene = nullptr;
   SceneSource source;
+  std::optional<formats::ImportReport> import;  // what reading a footprint file did (scene.import)
   const CameraPath* path = nullptr;
   std::string path_parameters_json = "{}";
   std::optional<CoordinateConversion> coordinates;  // the frame the path was given in (path.coordinates)

@@ -7,6 +7,7 @@
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subject_flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
+#include "core/formats/footprint_formats.hpp"
 #include "core/scene_io.hpp"
 #include "reports/claims.hpp"
 #include "reports/delta_claims.hpp"
@@ -117,7 +118,9 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--benchmark-json", f->benchmark_json,
                      "Fold this Google Benchmark JSON output (bench_culling --benchmark_format=json) into the report");
   return [f] {
-    const Scene scene = f->scene.source.load();
+    formats::ImportReport imported;
+    const Scene scene = f->scene.source.load(&imported);
+    if (imported.features > 0) std::cout << "imported " << formats::footprint_import_summary(imported) << "\n";
     if (f->view_cells) {  // bad view-cell input fails before the long run, not after it
       f->view_cell_options.samplings.clear();
       for (std::size_t start = 0; start <= f->view_cell_sampling.size();) {  // comma-separated names
@@ -152,6 +155,7 @@ Runner add_report(CLI::App& app) {
     in.method_options = f->tuning.options;
     in.scene = &scene;
     in.source = f->scene.source;
+    in.import = imported;
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
     in.coordinates = coordinates;
