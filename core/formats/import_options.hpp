@@ -33,7 +33,7 @@ struct ImportOptions {
   IdSource ids = IdSource::node;
   UpAxis obj_up = UpAxis::z;
   bool detect_prisms = true;  // false: every object stays a MeshObject (given prisms too)
-  FootprintOptions footprints;
+  FootprintOptions footprints{};
 };
 
 struct ImportReport {
