@@ -23,7 +23,7 @@ struct SceneSource {
   formats::UpAxis obj_up = formats::UpAxis::z;
   // How a footprint file's heights and CRS are read (--height-attribute, --storeys-attribute,
   // --storey-height, --missing-height, --crs).
-  formats::FootprintOptions footprints;
+  formats::FootprintOptions footprints{};
 
   // `report`, when given, receives what the import of a scene file did (counts, CRS, notes).
   Scene load(formats::ImportReport* report = nullptr) const;
