@@ -21,8 +21,9 @@
 //    be longitude/latitude (beyond ±180, ±90) in a file that names no CRS are an InputError
 //    asking for --crs.
 //  - Far-from-origin scenes are rebased (rebase_if_far), so UTM coordinates keep their precision.
-// Malformed files (not JSON, not GeoJSON, a coordinate that is not a number) raise InputError
-// naming the file, the feature and the field.
+// Malformed files (not JSON, not GeoJSON, a coordinate that is not a number), and files whose
+// features all fail to become buildings (a wrong height attribute, say), raise InputError naming
+// the file, the feature and the field.
 #pragma once
 
 #include <string>

@@ -289,6 +289,13 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
       }
       scene.buildings.push_back(std::move(b));
     }
+    // Features but no building is a reading mistake (a wrong attribute name, say), not a city.
+    if (report.features > 0 && scene.buildings.empty())
+      throw InputError(where, "features", "none of the " + std::to_string(report.features) + " features became a building (" +
+                                              std::to_string(report.skipped_no_height) + " without a usable height: name it with " +
+                                              "--height-attribute, --storeys-attribute or --missing-height; " +
+                                              std::to_string(report.skipped_invalid) + " invalid; " +
+                                              std::to_string(report.skipped_not_polygon) + " not polygons)");
     rebase_if_far(scene);
     report.objects = report.buildings = scene.buildings.size();
     if (report_out) *report_out = std::move(report);

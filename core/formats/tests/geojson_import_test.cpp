@@ -174,6 +174,9 @@ TEST(GeoJsonImport, BadFilesAreInputErrorsNamingTheField) {
     EXPECT_NE(got.find("bad.geojson"), std::string::npos) << c.text << " -> " << got;
     EXPECT_NE(got.find(c.expect), std::string::npos) << c.text << " -> " << got;
   }
+  // Every feature skipped (here: no "floors") is an error, not an empty city.
+  EXPECT_NE(error_of(collection(feature(R"({"levels": 3})", polygon(square(0, 0, 5))))).find("none of the 1 features"),
+            std::string::npos);
   FootprintOptions both = storeys();
   both.height_attribute = "h";
   EXPECT_NE(error_of(collection(""), both).find("exclude each other"), std::string::npos);
