@@ -20,6 +20,7 @@
 #include "generators/navigable_regions.hpp"
 #include "generators/open_space.hpp"
 #include "generators/random.hpp"
+#include "generators/walk_segments.hpp"
 
 namespace cullcheck::generators {
 namespace {
@@ -57,17 +58,12 @@ class FreeWalker {
   }
 
   std::vector<Camera> run() {
-    const double weights[4] = {p_.forward_weight, p_.backward_weight, p_.sidestep_weight, p_.stop_weight};
-    const double total = weights[0] + weights[1] + weights[2] + weights[3];
     while (!done()) {
-      double pick = rng_.uniform01() * total;
-      int kind = 0;
-      while (kind < 3 && (weights[kind] == 0.0 || pick >= weights[kind])) pick -= weights[kind], ++kind;
-      switch (kind) {
-        case 0: forward(static_cast<int>(rng_.uniform_int(30, 240))); break;
-        case 1: backward(static_cast<int>(rng_.uniform_int(10, 60))); break;
-        case 2: sidestep(rng_.uniform_real(-3.0, 3.0)); break;
-        default: stop(static_cast<int>(rng_.uniform_int(15, 60))); break;
+      switch (next_walk_segment(p_, rng_)) {
+        case WalkSegment::forward: forward(static_cast<int>(rng_.uniform_int(30, 240))); break;
+        case WalkSegment::backward: backward(static_cast<int>(rng_.uniform_int(10, 60))); break;
+        case WalkSegment::sidestep: sidestep(rng_.uniform_real(-3.0, 3.0)); break;
+        case WalkSegment::stop: stop(static_cast<int>(rng_.uniform_int(15, 60))); break;
       }
     }
     return std::move(frames_);
