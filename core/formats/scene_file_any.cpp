@@ -17,7 +17,11 @@ Scene read_scene_file_any(const std::string& path, const ImportOptions& options,
   if (ext == ".json") {
     const std::string text = read_text_file(path);
     if (looks_like_geojson(text)) return geojson_from_text(text, options.footprints, report, "file " + path);
-    return read_scene_file(path);
+    try {  // as read_scene_file, without reading the file a second time
+      return scene_from_json_text(text);
+    } catch (const InputError& e) {
+      throw e.located(path);
+    }
   }
   if (ext == ".glb" || ext == ".gltf") return read_gltf(path, options, report);
   if (ext == ".obj") return read_obj(path, options, report);

@@ -101,16 +101,10 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                           const std::vector<std::optional<ConvexSpan>>& spans) {
                         const Building& building = scene_.buildings[index];
                         const Vec2 e = plan(eye);
-                        // sweep_region hands every eye's guard (the centre's unclipped distance
-                        // + ε). The published variant keeps the centre's: the thesis's equations
-                        // know no near plane, and the wider guard would drop a wall crossing the
-                        // disc as an occluder, hiding the ledger's refutation of Eq. 4-5 behind a
-                        // rule of ours (kept case slab_across_the_disc).
-                        const double guard = corrected_ ? unclipped : unclipped - region.radius;
-                        const bool may_be_clipped = distance < guard;
+                        const bool may_be_clipped = distance < unclipped;
                         for (std::size_t p = 0; p < building.prisms.size(); ++p) {
                           const ConvexVerticalPrism& prism = building.prisms[p];
-                          if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < guard)) continue;
+                          if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
                           if (!corrected_) {
                             const auto shadow = published_shrunk_shadow(prism, eye, *spans[p], region.radius);
                             const double farthest = max_vertex_distance(prism.ring, e);
@@ -121,7 +115,12 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                           }
                         }
                       },
-                      known, passive_ ? &*passive_ : nullptr, known_passive);
+                      known, passive_ ? &*passive_ : nullptr, known_passive,
+                      // The published variant keeps the centre's near-plane guard: the thesis's
+                      // equations know no near plane, and every eye's guard would drop a wall
+                      // crossing the disc as an occluder, hiding the ledger's refutation of
+                      // Eq. 4-5 behind a rule of ours (kept case slab_across_the_disc).
+                      /*guard_every_eye=*/corrected_);
 }
 
 // Wonka et al.'s shrinking as ch. 4.1.1 describes it: each CVP's footprint moved inward by ε

@@ -17,6 +17,9 @@
 
 namespace cullcheck {
 
+// `guard_every_eye` (the conservative methods): `cast` is handed the centre's unclipped distance
+// + ε, beyond which no eye of the disc clips anything; false (the published method, which knows no
+// near plane) hands it the centre's alone.
 // `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
 // cull_region_carrying): they are accepted untested and cast their shadows.
 // `passive`, when given, is swept after the buildings against the same shadows (passive_targets.hpp)
@@ -24,7 +27,9 @@ namespace cullcheck {
 template <class CastShadows>
 CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
                         const CastShadows& cast, const std::vector<char>* known = nullptr,
-                        PassiveTargets* passive = nullptr, const std::vector<char>* known_passive = nullptr) {
+                        PassiveTargets* passive = nullptr, const std::vector<char>* known_passive = nullptr,
+                        bool guard_every_eye = true) {
+  const double reach = guard_every_eye ? region.radius : 0.0;
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
   ShadowQueue pending;
@@ -38,7 +43,7 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
       // and clipped geometry hides nothing (properties/region_drawn_scenes_test.cpp).
       [&](ShadowQueue& queue, std::uint32_t index, Vec3 eye, double distance, double unclipped,
           const std::vector<std::optional<ConvexSpan>>& spans) {
-        cast(queue, index, eye, distance, unclipped + region.radius, spans);
+        cast(queue, index, eye, distance, unclipped + reach, spans);
       },
       [&](std::uint32_t b) { return known && (*known)[b] != 0; }, pending, result);
   std::sort(result.pvs.begin(), result.pvs.end());
