@@ -59,11 +59,12 @@ class FreeWalker {
 
   std::vector<Camera> run() {
     while (!done()) {
-      switch (next_walk_segment(p_, rng_)) {
-        case WalkSegment::forward: forward(static_cast<int>(rng_.uniform_int(30, 240))); break;
-        case WalkSegment::backward: backward(static_cast<int>(rng_.uniform_int(10, 60))); break;
-        case WalkSegment::sidestep: sidestep(rng_.uniform_real(-3.0, 3.0)); break;
-        case WalkSegment::stop: stop(static_cast<int>(rng_.uniform_int(15, 60))); break;
+      const WalkSegment s = next_walk_segment(p_, rng_, 3.0);
+      switch (s.kind) {
+        case WalkKind::forward: forward(s.frames); break;
+        case WalkKind::backward: backward(s.frames); break;
+        case WalkKind::sidestep: sidestep(s.metres); break;
+        case WalkKind::stop: stop(s.frames); break;
       }
     }
     return std::move(frames_);

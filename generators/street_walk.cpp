@@ -36,11 +36,12 @@ class Walker {
     frames_.reserve(p_.frames);
     emit();
     while (!done()) {
-      switch (next_walk_segment(p_, rng_)) {
-        case WalkSegment::forward: forward(static_cast<int>(rng_.uniform_int(30, 240))); break;
-        case WalkSegment::backward: backward(static_cast<int>(rng_.uniform_int(10, 60))); break;
-        case WalkSegment::sidestep: sidestep(rng_.uniform_real(-max_offset_, max_offset_)); break;
-        case WalkSegment::stop: stop(static_cast<int>(rng_.uniform_int(15, 60))); break;
+      const WalkSegment s = next_walk_segment(p_, rng_, max_offset_);
+      switch (s.kind) {
+        case WalkKind::forward: forward(s.frames); break;
+        case WalkKind::backward: backward(s.frames); break;
+        case WalkKind::sidestep: sidestep(s.metres); break;
+        case WalkKind::stop: stop(s.frames); break;
       }
     }
     return std::move(frames_);
