@@ -144,6 +144,9 @@ const std::vector<PinnedPath>& pinned_paths() {
       {"street_walk", "manhattan", 3, R"({"blocks_x":4,"blocks_y":3,"block_size":30,"street_width":12})", 11,
        R"({"frames":2000,"hfov_deg":360})", 2000, "0x2f4a7128c303842a"},
       {"street_walk", "thesis", 2, R"({"grid_x":20,"grid_y":15})", 4, R"({"frames":600})", 600, "0x91eaca1bf342477d"},
+      // Scenes without a grid: the walk through free-space cells (free_space_walk.cpp).
+      {"street_walk", "irregular", 5, R"({"count":150})", 7, R"({"frames":600})", 600, "0xb3783733918f72c8"},
+      {"street_walk", "scatter", 2, R"({"count":150})", 7, R"({"frames":600})", 600, "0x228c96d6199a37bb"},
       {"fly_through", "default", 4, "{}", 8, R"({"frames":600,"dip_fraction":0.5})", 600, "0xb5fec2f2499b1eb2"},
       {"fly_through", "irregular", 4, R"({"count":150})", 2, R"({"frames":400})", 400, "0xfa2d32f934990957"},
       {"plaza_crossing", "plaza", 1,
