@@ -34,7 +34,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report region cell vbaoi gate fuzz; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region cell vbaoi gate fuzz html; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
@@ -73,6 +73,22 @@ grep -q "region shrink_former (radius 2.00 m)" "$work/out" && pass || fail "veri
 expect_exit 0 "report with a region radius sweep" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
   --method oh_os_conservative --claim-scenes 1 --region-sweep 0.5,2 -o "$work/sweep.json"
 grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_sweep in report.json"
+# The report page from a report of a scene file: drawn again by `cullcheck html` (the map's scene
+# rebuilt from the report's replay flags); a report whose scene is gone still gets its page, exit 2.
+expect_exit 0 "html of a report" "$cc" html "$work/sweep.json" -o "$work/sweep.html"
+grep -q '<img id="map-image"' "$work/sweep.html" && pass || fail "html: the page has no map"
+grep -q 'id="plot-region-sweep"' "$work/sweep.html" && pass || fail "html: the page has no radius-sweep plot"
+cp "$work/a.json" "$work/moved.json"
+sed "s|$work/a.json|$work/gone.json|g" "$work/sweep.json" >"$work/gone-report.json"
+expect_exit 2 "html: the report's scene is gone" "$cc" html "$work/gone-report.json" -o "$work/gone.html"
+expect_error_names "html: the report's scene is gone" "the page has no map"
+grep -q "No map drawn" "$work/gone.html" && pass || fail "html: the page of a report whose scene is gone was not written"
+expect_exit 0 "html: the scene given again" "$cc" html "$work/gone-report.json" -o "$work/given.html" --scene "$work/moved.json"
+grep -q '<img id="map-image"' "$work/given.html" && pass || fail "html: --scene did not replace the report's scene"
+expect_exit 2 "html: not a report" "$cc" html "$work/a.json" -o "$work/not.html"
+expect_error_names "html: not a report" "not a report written by cullcheck"
+expect_exit 2 "html: no such file" "$cc" html "$work/none.json"
+[ -e "$work/not.html" ] && fail "html: a page was written for a file that is not a report" || pass
 expect_exit 2 "unknown region method" "$cc" region --scene "$work/a.json" --method nonsense --camera "$camera"
 expect_error_names "unknown region method" "unknown region method 'nonsense'"
 expect_exit 2 "unknown region method in verify" "$cc" verify --scene "$work/a.json" --camera "$camera" --region-method nonsense
@@ -298,7 +314,7 @@ grep -q "^coordinates: scene-local metres, world = local + origin \[5000001.0, 3
   "[5000001.0, 3000000.0] world True 8 5.0" ] && pass || fail "gate: report.json of the world walk (origin, frame, subject = frustum, something seen)"
 expect_exit 0 "gate: the same walk scene-local" "$cc" gate "${far[@]}" --path "$work/far-local.json" --method frustum,oh_os_conservative \
   --subject "$subjects/minimal_subject" -o "$work/fl.json"
-strip_run() { json_field "$1" "[{k: v for k, v in r.items() if 'ms' not in k and 'seconds' not in k and k != 'protocol'} for r in d['runs']], d['oracle']['rays_cast']"; }
+strip_run() { json_field "$1" "[{k: ({f: x for f, x in v.items() if 'ms' not in f} if k == 'per_frame' else v) for k, v in r.items() if 'ms' not in k and 'seconds' not in k and k != 'protocol'} for r in d['runs']], d['oracle']['rays_cast']"; }
 [ "$(strip_run "$work/fw.json")" = "$(strip_run "$work/fl.json")" ] && pass || fail "gate: the world walk and the local walk gave different runs"
 # Per frame, the same PVS whichever way the frame is said.
 "$cc" cull "${far[@]}" --path "$work/far-local.json" --method oh_os_conservative | sed 's/"cull_ms":[0-9.e-]*//' >"$work/cl.txt"

@@ -142,7 +142,9 @@ void RgbImage::set(int i, int j, Rgb c) {
   rgb[k] = c.r, rgb[k + 1] = c.g, rgb[k + 2] = c.b;
 }
 
-void write_png(const RgbImage& image, const std::string& path) {
+void write_png(const RgbImage& image, const std::string& path) { write_text_file_atomically(path, encode_png(image)); }
+
+std::string encode_png(const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
     throw std::invalid_argument("write_png: image size and pixel buffer disagree");
   SpngContext s(SPNG_CTX_ENCODER);
@@ -159,7 +161,7 @@ void write_png(const RgbImage& image, const std::string& path) {
   std::unique_ptr<void, decltype(&std::free)> png(spng_get_png_buffer(s.ctx, &size, &error), &std::free);
   check_spng(error, "get buffer");
   if (!png) throw std::runtime_error("libspng: no PNG buffer");
-  write_text_file_atomically(path, std::string(static_cast<const char*>(png.get()), size));
+  return std::string(static_cast<const char*>(png.get()), size);
 }
 
 RgbImage read_png(const std::string& path) {
@@ -191,9 +193,13 @@ void MapFrame::pixel_of(Vec2 p, int& i, int& j) const {
 }
 
 MapFrame map_frame(const Scene& scene, const Camera& camera, int size_px) {
-  size_px = std::max(size_px, 16);
   Box2 box = scene.bounds().plan();
   box.extend(plan(camera.position));
+  return map_frame_of(box, size_px);
+}
+
+MapFrame map_frame_of(Box2 box, int size_px) {
+  size_px = std::max(size_px, 16);
   const double span = std::max(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
   const double margin = std::max(1.0, 0.04 * span);
   box.lo = box.lo - Vec2{margin, margin};
@@ -212,8 +218,13 @@ MapFrame map_frame(const Scene& scene, const Camera& camera, int size_px) {
 RgbImage top_down_map(const Scene& scene, const Camera& camera, const std::vector<ObjectId>& pvs_ids,
                       const std::vector<ObjectId>& seen_ids, const std::vector<ObjectId>& missed_ids,
                       const std::vector<oracle::WitnessRay>& witness_rays, int size_px) {
+  return top_down_map(scene, camera, pvs_ids, seen_ids, missed_ids, witness_rays, map_frame(scene, camera, size_px));
+}
+
+RgbImage top_down_map(const Scene& scene, const Camera& camera, const std::vector<ObjectId>& pvs_ids,
+                      const std::vector<ObjectId>& seen_ids, const std::vector<ObjectId>& missed_ids,
+                      const std::vector<oracle::WitnessRay>& witness_rays, const MapFrame& frame) {
   namespace colours = map_colours;
-  const MapFrame frame = map_frame(scene, camera, size_px);
   RgbImage image(frame.width, frame.height, colours::kBackground);
   Canvas canvas(image, frame);
   const std::vector<ObjectId> pvs = sorted_copy(pvs_ids), seen = sorted_copy(seen_ids), missed = sorted_copy(missed_ids);

@@ -40,6 +40,8 @@ struct RgbImage {
 // `path`, so a failure never leaves a truncated picture. InputError naming the file when it
 // cannot be written; std::runtime_error if encoding fails.
 void write_png(const RgbImage& image, const std::string& path);
+// The PNG file's bytes (what write_png writes), for pictures carried inline (the report page).
+std::string encode_png(const RgbImage& image);
 // Reads an 8-bit PNG back as RGB (InputError naming the file when it is unreadable).
 RgbImage read_png(const std::string& path);
 
@@ -71,6 +73,9 @@ struct MapFrame {
 };
 // The frame of a map whose longer side is `size_px` pixels (at least 16).
 MapFrame map_frame(const Scene& scene, const Camera& camera, int size_px);
+// The frame of a map of the plan box `box` (grown by 4% of its larger side, at least 1 m), its
+// longer side `size_px` pixels (at least 16).
+MapFrame map_frame_of(Box2 box, int size_px);
 
 // The top-down map of one frame. An object's class: MISSED (map_colours::kMissed) when it is in
 // `missed` or is in `seen` but not in `pvs` (seen but culled); otherwise VISIBLE when in `pvs` and
@@ -85,6 +90,10 @@ MapFrame map_frame(const Scene& scene, const Camera& camera, int size_px);
 RgbImage top_down_map(const Scene& scene, const Camera& camera, const std::vector<ObjectId>& pvs,
                       const std::vector<ObjectId>& seen, const std::vector<ObjectId>& missed,
                       const std::vector<oracle::WitnessRay>& witness_rays, int size_px);
+// The same, of the part of the scene `frame` shows (a map zoomed on a frame's neighbourhood).
+RgbImage top_down_map(const Scene& scene, const Camera& camera, const std::vector<ObjectId>& pvs,
+                      const std::vector<ObjectId>& seen, const std::vector<ObjectId>& missed,
+                      const std::vector<oracle::WitnessRay>& witness_rays, const MapFrame& frame);
 
 // A deterministic false colour per object id (every channel in [48, 223], so never the misdrawn
 // red), and the background colour of frame images.

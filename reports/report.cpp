@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "reports/gate_verdict.hpp"
+#include "reports/html/frame_map.hpp"
 #include "reports/statistics.hpp"
 
 #ifndef CULLCHECK_BUILD_TYPE
@@ -119,7 +120,8 @@ nlohmann::json build_report(const ReportInputs& in) {
                     {"seed", in.path->seed},
                     {"parameters", json::parse(in.path_parameters_json)},
                     {"frames", in.path->frames.size()},
-                    {"frames_per_second", in.path->frames_per_second}};
+                    {"frames_per_second", in.path->frames_per_second},
+                    {"replay_flags", in.path_replay_flags}};
   if (in.coordinates) {  // cameras are checked scene-local; this says what the input was
     const CoordinateConversion& c = *in.coordinates;
     report["path"]["coordinates"] = {{"given", frame_name(c.given)},
@@ -179,6 +181,18 @@ nlohmann::json build_report(const ReportInputs& in) {
                     {"violation_replays", violations},
                     {"witness_recheck", {{"checked", r.witness_recheck.checked}, {"dropped", r.witness_recheck.dropped}}}});
     json& run = runs.back();
+    // Per frame, for the page's curves: every answered frame, and the frames the oracle checked.
+    run["per_frame"] = {{"frames", r.answered_frames},
+                        {"cull_ms", r.cull_ms},
+                        {"pvs", r.pvs_size},
+                        {"checked_frames", r.checked_frames},
+                        {"checked_pvs", r.checked_pvs_size},
+                        {"witnessed", r.witnessed_size}};
+    if (r.snapshot)
+      run["worst_frame"] = {{"frame", r.snapshot->frame},
+                            {"missed", r.snapshot->missed.size()},
+                            {"overestimate", r.snapshot->overestimate},
+                            {"chosen_frame", in.map_frame.has_value()}};
     run["outside"] = r.outside;
     run["frames_skipped"] = r.frames_skipped;
     if (r.frames_skipped > 0) run["skip_reason"] = r.skip_reason;
@@ -256,6 +270,20 @@ nlohmann::json build_report(const ReportInputs& in) {
                        {"witness_recheck", {{"checked", r.witness_recheck.checked}, {"dropped", r.witness_recheck.dropped}}}});
   }
   report["regions"] = regions;
+  const MethodRun* chosen = nullptr;
+  try {
+    chosen = html::choose_map_run(v, in.map_method, "oh_os_conservative");
+  } catch (const std::invalid_argument& e) {  // a long run's report is never lost to a wrong map flag
+    report["map_problem"] = e.what();
+  }
+  if (chosen) {
+    std::string why = in.map_frame ? "the frame asked for" : "its worst checked frame";
+    if (!in.map_method.empty()) why += ", the method asked for";
+    else if (!chosen->snapshot->missed.empty()) why += "; the method whose worst frame missed most";
+    else if (chosen->method == "oh_os_conservative") why += "; no method missed anything, so the reference method's largest over-estimate";
+    else why += "; no method missed anything";
+    report["map"] = html::map_json(*chosen, why);
+  }
   json claims = json::array();
   for (const ClaimCheck& c : in.claims) claims.push_back(to_json(c));
   report["claims"] = claims;

@@ -33,6 +33,11 @@ struct ReportInputs {
   const PathVerification* verification = nullptr;
   std::vector<ClaimCheck> claims;
   GateThresholds thresholds;
+  // The map's frame (report.json "map", reports/html/frame_map.hpp): this method's snapshot, or
+  // (empty) the worst; `map_frame` says the snapshots were taken at a chosen frame.
+  std::string map_method;
+  std::optional<std::size_t> map_frame;
+  std::string path_replay_flags;  // the flags that rebuild the path (path.replay_flags)
 };
 
 nlohmann::json build_report(const ReportInputs& in);

@@ -23,3 +23,14 @@ add_test(NAME witness_recheck_report_test COMMAND witness_recheck_report_test)
 add_executable(region_sweep_test ${CMAKE_CURRENT_LIST_DIR}/tests/region_sweep_test.cpp)
 target_link_libraries(region_sweep_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
 add_test(NAME region_sweep_test COMMAND region_sweep_test)
+
+# The report page: text helpers, SVG plots, the page from hand-made reports, the map's frame.
+add_executable(report_page_test ${CMAKE_CURRENT_LIST_DIR}/html/tests/html_text_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/html/tests/svg_plot_test.cpp ${CMAKE_CURRENT_LIST_DIR}/html/tests/report_page_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/html/tests/frame_map_test.cpp)
+target_link_libraries(report_page_test PRIVATE cullcheck_report_page cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME report_page_test COMMAND report_page_test)
+
+# The report page in headless Chromium (a short main job; the screenshot is the run's artifact).
+add_test(NAME report_page_browser_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/html/tests/browser_test.sh $<TARGET_FILE:cullcheck>
+  ${PROJECT_BINARY_DIR}/artifacts)

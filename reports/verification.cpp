@@ -94,7 +94,38 @@ struct ViolationTally {
   std::vector<Violation> kept;
 };
 
+// Keeps this checked frame as the run's snapshot when it is the frame asked for, or (none asked
+// for) when it is worse than the one kept. The copies are made only then.
+void keep_snapshot(MethodRun& run, std::size_t index, const Camera& camera, const std::vector<ObjectId>& pvs,
+                   const oracle::OracleAnswer& answer, const oracle::PixelComparison* pixel, const std::vector<ObjectId>& missed,
+                   const std::optional<std::size_t>& wanted) {
+  std::size_t seen_in_pvs = 0;
+  for (ObjectId id : answer.visible) seen_in_pvs += std::binary_search(pvs.begin(), pvs.end(), id) ? 1 : 0;
+  FrameSnapshot s;
+  s.frame = index;
+  s.overestimate = pvs.size() - seen_in_pvs;
+  s.missed = missed;
+  if (wanted ? *wanted != index : run.snapshot && !worse_frame(s, *run.snapshot)) return;
+  s.camera = camera;
+  s.pvs = pvs;
+  s.seen = answer.visible;
+  if (pixel)
+    for (const auto& [id, ray] : pixel->witnesses) s.seen.push_back(id);
+  std::sort(s.seen.begin(), s.seen.end());
+  s.seen.erase(std::unique(s.seen.begin(), s.seen.end()), s.seen.end());
+  for (ObjectId id : missed) {
+    if (answer.sampling && answer.sampling->witnesses.count(id)) s.witness_rays.push_back(answer.sampling->witnesses.at(id));
+    else if (pixel && pixel->witnesses.count(id)) s.witness_rays.push_back(pixel->witnesses.at(id));
+  }
+  run.snapshot = std::move(s);
+}
+
 }  // namespace
+
+bool worse_frame(const FrameSnapshot& a, const FrameSnapshot& b) {
+  if (a.missed.size() != b.missed.size()) return a.missed.size() > b.missed.size();
+  return a.overestimate > b.overestimate;
+}
 
 // The gate (report.cpp's conservative_violations) counts the violations of the runs whose
 // claims_conservative is set. A method's claim may depend on the camera (claims_conservative_for:
@@ -213,6 +244,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       }
       const CullStatistics& s = results[m]->stats;
       run.cull_ms.push_back(s.cull_ms);
+      run.answered_frames.push_back(index);
       run.protocol_ms.push_back(s.protocol_ms);
       run.pvs_size.push_back(static_cast<double>(results[m]->pvs.size()));
       run.totals.cells_tested += s.cells_tested;
@@ -316,6 +348,8 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         std::sort(missed.begin(), missed.end());
       }
       drop_unconfirmed(truth, answer, camera, pixel ? &*pixel : nullptr, missed, run.witness_recheck);
+      run.checked_frames.push_back(index);
+      keep_snapshot(run, index, camera, pvs, answer, pixel ? &*pixel : nullptr, missed, options.snapshot_frame);
       if (missed.empty()) continue;
       for (ViolationTally* tally : {&all_frames[m], claimed ? &claimed_frames[m] : nullptr}) {
         if (tally == nullptr) continue;

@@ -49,7 +49,23 @@ struct VerificationOptions {
   // The index along the original path of the first camera given (`gate --frame N` checks one
   // frame of a path): frames are numbered from it in results, replays and set_frame.
   std::size_t first_frame = 0;
+  // The frame (its number along the original path) each run keeps as its FrameSnapshot, when it
+  // is checked; without it, each run keeps its worst checked frame.
+  std::optional<std::size_t> snapshot_frame;
 };
+
+// One checked frame of one method, kept for the report page's map: the camera, the PVS, what the
+// oracle saw, what the method missed (seen, not in the PVS) and the witness rays of the missed.
+struct FrameSnapshot {
+  std::size_t frame = 0;
+  Camera camera;
+  std::vector<ObjectId> pvs, seen, missed;  // sorted
+  std::vector<oracle::WitnessRay> witness_rays;  // one per missed object that has one
+  std::size_t overestimate = 0;  // PVS objects the oracle did not see
+};
+// Whether `a` is a worse frame than `b`: more missed objects, then more over-estimate (so the
+// first of equally bad frames is kept).
+bool worse_frame(const FrameSnapshot& a, const FrameSnapshot& b);
 
 struct Violation {
   std::size_t frame = 0;
@@ -88,9 +104,12 @@ struct MethodRun {
   bool outside = false;
   std::optional<std::uint64_t> pixel_error_budget;  // approximate methods' misdrawn pixels per frame
   std::vector<double> cull_ms;          // every frame
+  std::vector<std::size_t> answered_frames;  // the number of each of those frames along the path
   std::vector<double> pvs_size;         // every frame
   std::vector<double> checked_pvs_size;  // frames checked by the oracle
   std::vector<double> witnessed_size;    // same frames
+  std::vector<std::size_t> checked_frames;  // the number of each checked frame along the path
+  std::optional<FrameSnapshot> snapshot;  // the worst checked frame, or options.snapshot_frame
   CullStatistics totals;                // summed over frames (cull_ms excluded)
   std::uint64_t violation_count = 0;
   std::size_t frames_with_violations = 0;

@@ -1,12 +1,15 @@
 // cullcheck report: the main job. Every method and the oracle along a path, the claims ledger,
 // optional sections (thesis Table 4.1, view cells, VbAoI, scaling, the ε sweep), report.json.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
 
 #include "apps/cullcheck/flags.hpp"
+#include "apps/cullcheck/page_writer.hpp"
 #include "apps/cullcheck/subject_flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
+#include "core/errors.hpp"
 #include "core/formats/footprint_formats.hpp"
 #include "core/scene_io.hpp"
 #include "reports/claims.hpp"
@@ -33,7 +36,8 @@ Runner add_report(CLI::App& app) {
     SamplingFlags sampling;
     MethodFlags tuning;
     RegionFlags regions;
-    std::string methods = "all", output = "report.json", benchmark_json, junit;
+    std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
+    std::optional<std::size_t> map_frame;
     std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
     std::vector<double> region_sweep_radii;
     ClaimSearchOptions claim_options;
@@ -78,6 +82,12 @@ Runner add_report(CLI::App& app) {
       ->check(CLI::Range(1e-6, 1e4));
   sub->add_option("--method", f->methods, "Comma-separated methods, or 'all'")->capture_default_str();
   sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
+  sub->add_option("--html", f->html,
+                  "Also write the report page: one self-contained HTML file (summary, claims ledger, plots, map) that opens "
+                  "offline; `cullcheck html report.json` writes it later");
+  sub->add_option("--map-method", f->map_method, "The method the page's map shows (default: the worst: the method that missed most)");
+  sub->add_option("--map-frame", f->map_frame,
+                  "The frame the page's map shows (a frame the oracle checks; default: the chosen method's worst checked frame)");
   sub->add_flag("--no-pixels", f->no_pixels, "Skip the pixel oracle (misdrawn pixels per method at every checked frame)");
   sub->add_option("--junit", f->junit, "Also write the gate's checks as JUnit XML (one test case per method and check)");
   sub->add_option("--oracle-stride", f->oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
@@ -142,6 +152,13 @@ Runner add_report(CLI::App& app) {
     options.oracle_stride = f->oracle_stride;
     options.pixels = !f->no_pixels;
     options.path_replay_flags = f->path.replay_flags();
+    options.snapshot_frame = f->map_frame;
+    if (f->map_frame && *f->map_frame % std::max<std::size_t>(1, f->oracle_stride) != 0)
+      throw InputError("flag", "map-frame", std::to_string(*f->map_frame) + " is not a frame the oracle checks (every " +
+                                                std::to_string(f->oracle_stride) + "th from 0)");
+    if (f->map_frame && *f->map_frame >= path.frames.size())
+      throw InputError("flag", "map-frame", std::to_string(*f->map_frame) + " is past the path's last frame (" +
+                                                std::to_string(path.frames.size() - 1) + ")");
     options.region_methods = parse_methods(f->regions.methods, region_method_names());
     options.region_radius = f->regions.radius;
     options.region_turn = f->regions.turn;
@@ -160,6 +177,9 @@ Runner add_report(CLI::App& app) {
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
     in.coordinates = coordinates;
     in.verification = &v;
+    in.map_method = f->map_method;
+    in.map_frame = f->map_frame;
+    in.path_replay_flags = f->path.replay_flags();
     in.claims = subject_claims(v);
     for (ClaimCheck& c : check_shadow_elevation_rule(f->claim_options)) in.claims.push_back(std::move(c));
     for (ClaimCheck& c : check_image_space_pitch_roll(f->claim_options)) in.claims.push_back(std::move(c));
@@ -246,6 +266,12 @@ Runner add_report(CLI::App& app) {
       document["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
+    if (!f->html.empty()) {
+      if (const std::string problem = write_report_page(document, &scene, f->html, 900); !problem.empty())
+        std::cerr << "cullcheck: the page has no map: " << problem << "\n";
+      std::cout << "wrote " << f->html << "\n";
+    }
+    if (document.contains("map_problem")) std::cerr << "cullcheck: " << document["map_problem"].get<std::string>() << "\n";
     std::cout << coordinates_line(coordinates, f->path.source_name("")) << "\n" << summary_table(v);
     for (const ClaimCheck& c : in.claims) {
       std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "

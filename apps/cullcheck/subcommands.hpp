@@ -20,5 +20,6 @@ Runner add_vbaoi(CLI::App& app);
 Runner add_report(CLI::App& app);
 Runner add_gate(CLI::App& app);
 Runner add_fuzz(CLI::App& app);
+Runner add_html(CLI::App& app);
 
 }  // namespace cullcheck::cli

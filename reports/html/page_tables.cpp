@@ -1,0 +1,294 @@
+// The report page's tables and text sections (page_sections.hpp).
+#include <cmath>
+
+#include "reports/html/html_text.hpp"
+#include "reports/html/page_sections.hpp"
+#include "reports/pictures.hpp"
+
+namespace cullcheck::html {
+namespace {
+
+using nlohmann::json;
+
+const json& member(const json& object, const char* key) {
+  static const json null;
+  if (!object.is_object()) return null;
+  const auto it = object.find(key);
+  return it == object.end() ? null : *it;
+}
+
+std::string cell(const std::string& text, const char* cls = nullptr) {
+  return cls ? "<td class=\"" + std::string(cls) + "\">" + text + "</td>" : "<td>" + text + "</td>";
+}
+// A header row; a name starting with '<' heads a text column (left-aligned like its cells).
+std::string header(std::initializer_list<const char*> names) {
+  std::string out = "<tr>";
+  for (const char* n : names) {
+    const bool text = n[0] == '<';
+    out += text ? "<th class=\"name\">" : "<th>";
+    out += escape(text ? n + 1 : n);
+    out += "</th>";
+  }
+  return out + "</tr>\n";
+}
+std::string yes_no(const json& v) { return v.is_boolean() ? (v.get<bool>() ? "yes" : "no") : "\u2013"; }
+std::string colour_hex(Rgb c) {
+  char buffer[8];
+  std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", c.r, c.g, c.b);
+  return buffer;
+}
+std::string violations_cell(double v) { return v > 0 ? cell("<span class=\"bad\">" + count(v) + "</span>") : cell(count(v)); }
+
+}  // namespace
+
+std::string gate_section(const json& report) {
+  const json& gate = member(report, "gate");
+  if (!gate.is_object()) return "";
+  const bool passed = gate.value("passed", false);
+  std::string out = "<section id=\"gate\"><h2>Gate</h2>\n<div class=\"verdict " + std::string(passed ? "passed" : "failed") +
+                    "\" id=\"gate-verdict\"><b>" + (passed ? "PASSED" : "FAILED") + "</b> (exit code " +
+                    count(value_of(gate, "exit_code")) + "): " + count(value_of(gate, "conservative_violations")) +
+                    " objects seen but culled by methods that claim to be conservative, " +
+                    count(value_of(gate, "conservative_misdrawn_pixels")) + " misdrawn pixels of theirs, " +
+                    count(value_of(gate, "frames_over_pixel_budget")) + " frames over an approximate method's pixel budget, " +
+                    count(value_of(gate, "section_violations")) + " violations in the report's other sections" +
+                    (gate.value("subject_failed", false) ? "; an outside subject failed (crashed, hung or broke the protocol)" : "") +
+                    ".</div>\n";
+  const json& checks = member(gate, "checks");
+  if (checks.is_array() && !checks.empty()) {
+    out += "<table>" + header({"<method", "<check", "<outcome", "<detail"});
+    for (const json& c : checks) {
+      const std::string outcome = text_of(c, "outcome");
+      out += "<tr>" + cell(escape(text_of(c, "method")), "name") + cell(escape(text_of(c, "check")), "name") +
+             cell(outcome == "passed" ? escape(outcome) : "<span class=\"bad\">" + escape(outcome) + "</span>", "name") +
+             cell(escape(text_of(c, "detail", text_of(c, "message"))), "name") + "</tr>\n";
+    }
+    out += "</table>\n";
+  }
+  if (const json& aborted = member(report, "aborted"); aborted.is_object())
+    out += "<p class=\"problem\">The run stopped early: " + escape(text_of(aborted, "method")) + " (" + escape(text_of(aborted, "kind")) +
+           "): " + escape(text_of(aborted, "message")) + "</p>\n";
+  return out + "</section>\n";
+}
+
+std::string summary_section(const json& report) {
+  const json& runs = member(report, "runs");
+  if (!runs.is_array()) return "";
+  const bool pixels = member(member(report, "pixel_oracle"), "enabled").is_boolean() && report["pixel_oracle"]["enabled"].get<bool>();
+  std::string out = "<section id=\"summary\"><h2>Methods along the path</h2>\n<p class=\"note\">Culling time per frame (median and "
+                    "95th percentile over every frame); PVS and witnessed sizes averaged over the frames the oracle checked; "
+                    "over-estimation = PVS / witnessed. A violation is an object the oracle saw that the method culled.</p>\n<table>";
+  out += pixels ? header({"<method", "frames", "ms median", "ms p95", "PVS", "witnessed", "over-estimation", "violations",
+                          "frames with violations", "misdrawn px / frame", "error frames", "claims conservative"})
+                : header({"<method", "frames", "ms median", "ms p95", "PVS", "witnessed", "over-estimation", "violations",
+                          "frames with violations", "claims conservative"});
+  for (const json& r : runs) {
+    std::string name = escape(text_of(r, "method"));
+    if (r.value("outside", false)) name += " <small>(outside subject)</small>";
+    out += "<tr>" + cell(name, "name") + cell(count(value_of(r, "frames"))) + cell(number(value_of(r, "cull_ms_median"))) +
+           cell(number(value_of(r, "cull_ms_p95"))) + cell(number(value_of(r, "pvs_mean_checked_frames"), 4)) +
+           cell(number(value_of(r, "witnessed_mean"), 4)) + cell(number(value_of(r, "overestimation"))) +
+           violations_cell(value_of(r, "violations")) + cell(count(value_of(r, "frames_with_violations")));
+    if (pixels) {
+      const json& p = member(r, "pixels");
+      out += cell(number(value_of(p, "misdrawn_pixels_mean"))) + cell(count(value_of(p, "error_frames")));
+    }
+    out += cell(yes_no(member(r, "claims_conservative"))) + "</tr>\n";
+  }
+  out += "</table>\n";
+  for (const json& r : runs) {
+    const json& replays = member(r, "violation_replays");
+    if (!replays.is_array() || replays.empty()) continue;
+    out += "<h3>" + escape(text_of(r, "method")) + ": violations (the first " + std::to_string(replays.size()) + " of " +
+           count(value_of(r, "violations")) + ")</h3>\n";
+    for (const json& x : replays)
+      out += "<p class=\"note\">frame " + count(value_of(x, "frame")) + ", object " + count(value_of(x, "building")) + " seen by " +
+             escape(text_of(x, "model")) + ": " + escape(text_of(x, "witness")) + "</p>\n" + replay_block(text_of(x, "replay"));
+  }
+  if (const json& skipped = member(report, "skipped_methods"); skipped.is_array() && !skipped.empty()) {
+    out += "<p class=\"note\">Not run on this scene:";
+    for (const json& s : skipped) out += " " + escape(text_of(s, "method")) + " (" + escape(text_of(s, "reason")) + ");";
+    out += "</p>\n";
+  }
+  return out + "</section>\n";
+}
+
+std::string claims_section(const json& report) {
+  const json& claims = member(report, "claims");
+  if (!claims.is_array()) return "";
+  std::size_t refuted = 0;
+  for (const json& c : claims) refuted += c.value("holds", true) ? 0 : 1;
+  std::string out = "<section id=\"claims\"><h2>Claims ledger</h2>\n<p class=\"note\">" + std::to_string(claims.size()) +
+                    " claims checked, " + std::to_string(refuted) +
+                    " refuted. A refuted claim carries the one command that replays its counterexample.</p>\n<table>" +
+                    header({"<claim", "<source", "<statement", "<verdict", "frames checked", "violations"});
+  for (const json& c : claims) {
+    const bool holds = c.value("holds", true);
+    out += "<tr id=\"claim-" + escape(text_of(c, "id")) + "\">" + cell("<b>" + escape(text_of(c, "id")) + "</b>", "name") +
+           cell(escape(text_of(c, "source")), "name") + cell(escape(text_of(c, "statement")), "name") +
+           cell(holds ? "<span class=\"holds\">holds</span>" : "<span class=\"refuted\">REFUTED</span>", "name") +
+           cell(count(value_of(c, "frames_checked"))) + cell(count(value_of(c, "violations"))) + "</tr>\n";
+    const json& counterexample = member(c, "counterexample");
+    if (!holds && counterexample.is_object())
+      out += "<tr><td colspan=\"6\" class=\"name\">" + escape(text_of(counterexample, "detail")) +
+             replay_block(text_of(counterexample, "replay")) + "</td></tr>\n";
+  }
+  return out + "</table>\n</section>\n";
+}
+
+std::string table_3_2_section(const json& report) {
+  const json& speedups = member(report, "speedups");
+  if (!speedups.is_array() || speedups.empty()) return "";
+  std::string out = "<section id=\"table-3-2\"><h2>Thesis Table 3.2: culling-time speed-ups</h2>\n<p class=\"note\">Measured in "
+                    "this run on this machine as ratios of per-frame culling time (the slower method's over the faster's); "
+                    "the thesis's figures are from its Pentium IV. Ratios, not seconds, are what carries over between "
+                    "machines.</p>\n<table>" +
+                    header({"<faster", "<than", "median ratio", "p95 ratio", "mean ratio", "cells tested ratio", "thesis"});
+  for (const json& s : speedups)
+    out += "<tr>" + cell(escape(text_of(s, "faster")), "name") + cell(escape(text_of(s, "than")), "name") +
+           cell(number(value_of(s, "cull_ms_median_ratio")) + "\u00d7") + cell(number(value_of(s, "cull_ms_p95_ratio")) + "\u00d7") +
+           cell(number(value_of(s, "cull_ms_mean_ratio")) + "\u00d7") + cell(number(value_of(s, "cells_tested_ratio"))) +
+           cell(std::isfinite(value_of(s, "thesis_table_3_2_culling_time"))
+                    ? number(value_of(s, "thesis_table_3_2_culling_time")) + "\u00d7"
+                    : "\u2013") +
+           "</tr>\n";
+  return out + "</table>\n</section>\n";
+}
+
+std::string table_4_1_section(const json& report) {
+  const json& t = member(report, "table_4_1");
+  if (!t.is_object()) return "";
+  const json& path = member(t, "path");
+  std::string out = "<section id=\"table-4-1\"><h2>Thesis Table 4.1: from-region PVS on the plaza walk</h2>\n<p class=\"note\">" +
+                    escape(text_of(path, "kind")) + " of " + count(value_of(path, "frames")) + " frames, region radius " +
+                    number(value_of(t, "radius")) + " m, " + count(value_of(t, "oracle_frames")) +
+                    " frames checked by the oracle. Increase = PVS over Method 1's at 60 degrees, beside the thesis's.</p>\n<table>" +
+                    header({"<method", "<thesis's method", "angle", "PVS", "increase", "thesis", "violations", "ms / PVS", "frames / PVS"});
+  for (const json& r : member(t, "rows")) {
+    const bool claimed = r.value("claims_conservative", true);
+    out += "<tr>" + cell(escape(text_of(r, "method")) + (claimed ? "" : " <small>(not claimed conservative)</small>"), "name") +
+           cell(escape(text_of(r, "thesis_method")), "name") + cell(number(value_of(r, "viewing_angle")) + "\u00b0") +
+           cell(number(value_of(r, "pvs_mean"), 4)) + cell(percent(value_of(r, "increase_over_method_1_at_60"))) +
+           cell(percent(value_of(r, "thesis_increase"))) + violations_cell(value_of(r, "violations")) +
+           cell(number(value_of(r, "compute_ms_median"))) + cell(number(value_of(r, "frames_per_pvs"))) + "</tr>\n";
+  }
+  out += "</table>\n";
+  for (const json& d : member(t, "disc_witnessed"))
+    out += "<p class=\"note\">At " + number(value_of(d, "viewing_angle")) + " degrees the oracle's witnessed union over each disc is " +
+           percent(value_of(d, "witnessed_increase")) + " above what its centre sees (" + number(value_of(d, "witnessed_union_mean"), 4) +
+           " against " + number(value_of(d, "witnessed_centre_mean"), 4) + " objects): no conservative region method can do "
+           "better than that on this walk.</p>\n";
+  return out + "</section>\n";
+}
+
+std::string regions_section(const json& report) {
+  const json& regions = member(report, "regions");
+  if (!regions.is_array() || regions.empty()) return "";
+  std::string out = "<section id=\"regions\"><h2>Region methods along the path</h2>\n<table>" +
+                    header({"<method", "radius (m)", "<placement", "PVS computed", "frames / PVS", "ms / PVS median", "PVS",
+                            "over point PVS", "witnessed", "violations"});
+  for (const json& r : regions) {
+    const bool claimed = r.value("claims_conservative", true);
+    out += "<tr>" + cell(escape(text_of(r, "method")) + (claimed ? "" : " <small>(not claimed conservative)</small>"), "name") +
+           cell(number(value_of(r, "radius"))) + cell(escape(text_of(r, "placement")), "name") + cell(count(value_of(r, "pvs_computed"))) +
+           cell(number(value_of(r, "frames_per_pvs"))) + cell(number(value_of(r, "compute_ms_median"))) +
+           cell(number(value_of(r, "pvs_mean"), 4)) + cell(percent(value_of(r, "increase_over_point_pvs"))) +
+           cell(number(value_of(r, "witnessed_mean"), 4)) + violations_cell(value_of(r, "violations")) + "</tr>\n";
+  }
+  out += "</table>\n";
+  for (const json& r : regions)
+    for (const json& x : member(r, "violation_replays"))
+      out += "<p class=\"note\">" + escape(text_of(r, "method")) + ", frame " + count(value_of(x, "frame")) + ", object " +
+             count(value_of(x, "building")) + ": " + escape(text_of(x, "witness")) + "</p>\n" + replay_block(text_of(x, "replay"));
+  return out + "</section>\n";
+}
+
+std::string vbaoi_table_section(const json& report) {
+  const json& v = member(report, "vbaoi");
+  if (!v.is_object()) return "";
+  const json& g = member(v, "graph");
+  std::string out = "<section id=\"vbaoi\"><h2>VbAoI: messages against clients</h2>\n<p class=\"note\">The navigable-region graph of " +
+                    count(value_of(g, "buildings")) + " buildings: " + count(value_of(g, "nodes")) + " nodes built in " +
+                    number(value_of(g, "build_seconds")) + " s with " + escape(text_of(g, "method")) + "; PVSo " +
+                    number(value_of(member(g, "pvs_o"), "mean")) + " objects on average (" +
+                    percent(value_of(g, "pvs_o_fraction_of_city")).substr(1) + " of the city), " +
+                    count(value_of(g, "invariant_violations")) + " invariant violations.</p>\n<table>" +
+                    header({"<clients", "<policy", "radius (m)", "messages", "bytes", "messages vs VbAoI", "missed updates", "lost updates"});
+  for (const json& run : member(v, "runs"))
+    for (const json& p : member(run, "policies"))
+      out += "<tr>" + cell(count(value_of(run, "clients")), "name") + cell(escape(text_of(p, "policy")), "name") +
+             cell(value_of(p, "radius") > 0 ? number(value_of(p, "radius")) : "\u2013") + cell(count(value_of(p, "messages"))) +
+             cell(count(value_of(p, "bytes"))) + cell(number(value_of(p, "messages_vs_vbaoi")) + "\u00d7") +
+             violations_cell(value_of(p, "missed_updates")) + cell(count(value_of(p, "lost_updates"))) + "</tr>\n";
+  out += "</table>\n";
+  for (const json& run : member(v, "runs"))
+    if (!text_of(run, "replay").empty()) {
+      out += "<p class=\"note\">Replay the " + count(value_of(run, "clients")) + "-client simulation:</p>" + replay_block(text_of(run, "replay"));
+      break;
+    }
+  return out + "</section>\n";
+}
+
+std::string fuzz_section(const json& report) {
+  std::string out;
+  for (const char* key : {"fuzz", "soak"}) {
+    const json& f = member(report, key);
+    if (!f.is_object()) continue;
+    out += "<h3>" + std::string(key == std::string("fuzz") ? "Fuzzed subject" : "Soak of the built-in conservative methods") +
+           ": " + escape(text_of(f, "subject")) + "</h3>\n<p class=\"note\">" + count(value_of(f, "cases")) + " cases in " +
+           number(value_of(f, "seconds_total")) + " s" +
+           (member(f, "failure").is_object() || !text_of(f, "counterexample").empty()
+                ? ": <span class=\"bad\">a counterexample was found</span>, shrunk to " + escape(text_of(f, "counterexample"))
+                : ": no counterexample") +
+           ".</p>\n";
+  }
+  return out.empty() ? "" : "<section id=\"fuzzing\"><h2>Fuzzing</h2>\n" + out + "</section>\n";
+}
+
+std::string scene_section(const json& report) {
+  const json& s = member(report, "scene");
+  std::string out = "<section id=\"scene\"><h2>Scene, oracle and machine</h2>\n<table>" + header({"<", "<"});
+  auto row = [&](const std::string& k, const std::string& v) { out += "<tr>" + cell(escape(k), "name") + cell(v, "name") + "</tr>\n"; };
+  row("scene", "<code>" + escape(text_of(s, "replay_flags")) + "</code>");
+  row("model", escape(text_of(s, "model")));
+  row("buildings / meshes / triangles", count(value_of(s, "building_count")) + " / " + count(value_of(s, "mesh_count")) + " / " +
+                                            count(value_of(s, "triangle_count")));
+  if (const json& i = member(s, "import"); i.is_object())
+    row("imported", count(value_of(i, "features")) + " features: " + count(value_of(i, "buildings")) + " buildings, " +
+                        count(value_of(i, "heights_defaulted")) + " heights defaulted, " + count(value_of(i, "rings_repaired")) +
+                        " rings repaired, " + count(value_of(i, "holes_filled")) + " holes filled, " +
+                        count(value_of(i, "skipped_invalid")) + " invalid polygons skipped, CRS " + escape(text_of(i, "crs")));
+  const json& o = member(report, "oracle");
+  row("oracle", count(value_of(o, "frames_checked")) + " frames checked (every " + count(value_of(o, "oracle_stride")) + "th), " +
+                    count(value_of(o, "rays_cast")) + " rays, " + number(value_of(o, "rays_per_second")) + " rays/s (bare Embree " +
+                    number(value_of(o, "bare_embree_rays_per_second")) + ")");
+  const json& m = member(report, "machine");
+  row("machine", escape(text_of(m, "system")) + ", " + count(value_of(m, "hardware_threads")) + " threads, " +
+                     escape(text_of(m, "compiler")) + ", " + escape(text_of(m, "build_type")));
+  return out + "</table>\n</section>\n";
+}
+
+std::string map_section(const json& report, const PageMap& map) {
+  const json& m = member(report, "map");
+  std::string out = "<section id=\"map\" class=\"map\"><h2>Top-down map</h2>\n";
+  if (!m.is_object())
+    return out + "<p class=\"problem\">This report has no map frame: " +
+           escape(text_of(report, "map_problem", "no frame was checked by the oracle")) + ".</p></section>\n";
+  const std::size_t missed = member(m, "missed").is_array() ? m["missed"].size() : 0;
+  out += "<p class=\"note\">" + escape(text_of(m, "method")) + " at frame " + count(value_of(m, "frame")) + " (" +
+         escape(text_of(m, "chosen_by")) + "): PVS " + std::to_string(member(m, "pvs").size()) + " objects, the oracle saw " +
+         std::to_string(member(m, "seen").size()) + ", " + count(value_of(m, "overestimate")) + " over-estimated, " +
+         (missed > 0 ? "<span class=\"bad\">" + std::to_string(missed) + " missed</span>" : std::string("none missed")) +
+         ". North is up.</p>\n<p class=\"note\">";
+  const std::pair<const char*, Rgb> legend[] = {{"view volume", map_colours::kViewVolume},  {"visible (in the PVS, seen)", map_colours::kVisible},
+                                                {"over-estimate (in the PVS, not seen)", map_colours::kOverEstimate},
+                                                {"culled", map_colours::kCulled}, {"missed (seen, culled)", map_colours::kMissed},
+                                                {"witness ray", map_colours::kWitnessRay}, {"eye", map_colours::kEye}};
+  for (const auto& [name, colour] : legend) out += "<span class=\"swatch\" style=\"background:" + colour_hex(colour) + "\"></span>" + escape(name);
+  out += "</p>\n";
+  if (map.png.empty()) return out + "<p class=\"problem\">No map drawn: " + escape(map.problem) + "</p></section>\n";
+  return out + "<img id=\"map-image\" alt=\"top-down map of frame " + count(value_of(m, "frame")) +
+         "\" src=\"data:image/png;base64," + base64(map.png) + "\">\n</section>\n";
+}
+
+}  // namespace cullcheck::html

@@ -1,0 +1,104 @@
+// The report page from hand-made reports: what a reader must find on it, escaped; sections the
+// report lacks left out; a malformed section said in place, never losing the rest.
+#include "reports/html/report_page.hpp"
+
+#include <gtest/gtest.h>
+
+namespace cullcheck::html {
+namespace {
+
+using nlohmann::json;
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+json small_report(bool passed) {
+  json run = {{"method", "oh_os_conservative"}, {"frames", 3}, {"cull_ms_median", 0.25}, {"cull_ms_p95", 0.5},
+              {"pvs_mean_checked_frames", 40.0}, {"witnessed_mean", 32.0}, {"overestimation", 1.25}, {"violations", passed ? 0 : 2},
+              {"frames_with_violations", passed ? 0 : 1}, {"claims_conservative", true},
+              {"per_frame", {{"frames", {0, 1, 2}}, {"cull_ms", {0.2, 0.25, 0.5}}, {"pvs", {39, 40, 41}},
+                             {"checked_frames", {0, 2}}, {"witnessed", {31, 33}}}}};
+  if (!passed)
+    run["violation_replays"] = json::array({{{"frame", 2}, {"building", 17}, {"model", "ray_sampling_3d"}, {"witness", "ray <w>"},
+                                             {"replay", "cullcheck verify --generator default --seed 1 --camera '{\"yaw\":1}'"}}});
+  return {{"schema_version", 9},
+          {"scene", {{"replay_flags", "--generator default --seed 1"}, {"building_count", 2808}}},
+          {"path", {{"kind", "street_walk"}, {"frames", 3}}},
+          {"runs", json::array({run})},
+          {"gate", {{"passed", passed}, {"exit_code", passed ? 0 : 1}, {"conservative_violations", passed ? 0 : 2},
+                    {"checks", json::array({{{"method", "oh_os_conservative"}, {"check", "conservative"},
+                                             {"outcome", passed ? "passed" : "failed"}}})}}},
+          {"claims", json::array({{{"id", "thesis-x"}, {"source", "thesis"}, {"statement", "A & B"}, {"holds", false},
+                                   {"frames_checked", 10}, {"violations", 1},
+                                   {"counterexample", {{"detail", "seen"}, {"replay", "cullcheck verify --params '{\"a\":1}'"}}}},
+                                  {{"id", "ok-claim"}, {"holds", true}, {"frames_checked", 5}, {"violations", 0}}})},
+          {"speedups", json::array({{{"faster", "delta_h_guarded"}, {"than", "oh_os_conservative"}, {"cull_ms_median_ratio", 3.1},
+                                     {"thesis_table_3_2_culling_time", 9.18}}})}};
+}
+
+TEST(ReportPage, ShowsTheVerdictTheTableAndTheLedgerAtTheTop) {
+  const std::string page = report_page(small_report(true), {});
+  EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(page.find("<b>PASSED</b> (exit code 0)"), std::string::npos);
+  EXPECT_LT(page.find("id=\"gate\""), page.find("id=\"summary\""));
+  EXPECT_LT(page.find("id=\"summary\""), page.find("id=\"claims\""));
+  EXPECT_NE(page.find("<td class=\"name\">oh_os_conservative</td><td>3</td><td>0.250</td><td>0.500</td>"), std::string::npos);
+  EXPECT_NE(page.find("2 claims checked, 1 refuted"), std::string::npos);
+  EXPECT_NE(page.find("<span class=\"refuted\">REFUTED</span>"), std::string::npos);
+  // The refuted claim's replay, escaped, in a copyable block; the holding claim has none.
+  EXPECT_NE(page.find("<code>cullcheck verify --params &#39;{&quot;a&quot;:1}&#39;</code><button type=\"button\">copy</button>"),
+            std::string::npos);
+  EXPECT_EQ(occurrences(page, "<div class=\"replay\">"), 1u);
+  EXPECT_NE(page.find("A &amp; B"), std::string::npos);
+  EXPECT_NE(page.find("<td>3.10\u00d7</td>"), std::string::npos);
+  EXPECT_NE(page.find("<td>9.18\u00d7</td>"), std::string::npos) << "Table 3.2 beside the thesis's value";
+}
+
+TEST(ReportPage, AFailedGateShowsItsViolationsWithTheirReplays) {
+  const std::string page = report_page(small_report(false), {});
+  EXPECT_NE(page.find("<div class=\"verdict failed\" id=\"gate-verdict\"><b>FAILED</b> (exit code 1): 2 objects seen but culled"),
+            std::string::npos);
+  EXPECT_NE(page.find("<span class=\"bad\">failed</span>"), std::string::npos);
+  EXPECT_NE(page.find("frame 2, object 17 seen by ray_sampling_3d: ray &lt;w&gt;"), std::string::npos);
+  EXPECT_EQ(occurrences(page, "<div class=\"replay\">"), 2u);
+}
+
+TEST(ReportPage, PlotsThePathAndTheTradeWhenTheReportHasThem) {
+  const std::string page = report_page(small_report(true), {});
+  for (const char* id : {"plot-pareto", "plot-frame-time", "plot-frame-pvs"})
+    EXPECT_NE(page.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
+  EXPECT_NE(page.find("data-series=\"witnessed (oracle)\""), std::string::npos);
+  // Sections the report does not have are left out, not drawn empty.
+  for (const char* id : {"plot-vbaoi-messages", "plot-region-sweep", "id=\"table-4-1\"", "plot-scaling"})
+    EXPECT_EQ(page.find(id), std::string::npos) << id;
+}
+
+TEST(ReportPage, CarriesTheMapInlineOrSaysWhyNot) {
+  json report = small_report(true);
+  report["map"] = {{"method", "oh_os_conservative"}, {"frame", 2}, {"chosen_by", "test"}, {"pvs", {1, 2}}, {"seen", {1}},
+                   {"missed", json::array()}, {"overestimate", 1}};
+  const std::string with = report_page(report, {std::string("\x89PNG", 4), ""});
+  EXPECT_NE(with.find("<img id=\"map-image\" alt=\"top-down map of frame 2\" src=\"data:image/png;base64,iVBORw==\">"),
+            std::string::npos);
+  EXPECT_EQ(with.find("http://"), with.find("http://www.w3.org/2000/svg")) << "nothing is fetched from the network";
+  EXPECT_EQ(with.find("https://"), std::string::npos);
+  const std::string without = report_page(report, {"", "the scene file moved"});
+  EXPECT_EQ(without.find("<img id=\"map-image\""), std::string::npos);
+  EXPECT_NE(without.find("No map drawn: the scene file moved"), std::string::npos);
+}
+
+TEST(ReportPage, AMalformedSectionIsSaidInPlaceAndTheRestStays) {
+  json report = small_report(true);
+  report["claims"] = json::array({5});
+  const std::string page = report_page(report, {});
+  EXPECT_NE(page.find("<h2>Claims ledger</h2><p class=\"problem\">This section of the report could not be read"), std::string::npos);
+  EXPECT_NE(page.find("<b>PASSED</b>"), std::string::npos);
+  EXPECT_NE(page.find("id=\"plot-pareto\""), std::string::npos);
+  EXPECT_NE(report_page(json::object(), {}).find("</html>"), std::string::npos) << "an empty report still gives a page";
+}
+
+}  // namespace
+}  // namespace cullcheck::html
