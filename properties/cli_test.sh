@@ -73,6 +73,15 @@ grep -q "region shrink_former (radius 2.00 m)" "$work/out" && pass || fail "veri
 expect_exit 0 "report with a region radius sweep" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
   --method oh_os_conservative --claim-scenes 1 --region-sweep 0.5,2 -o "$work/sweep.json"
 grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_sweep in report.json"
+# Progress: on a terminal (script(1) gives the run one) a run over 2 s shows its stage and how
+# far it is on stderr; with --quiet, or when stderr is not a terminal, nothing.
+long_run=("$cc" verify --generator default --path-params '{"frames":20}' --method oh_os_conservative)
+script -qec "${long_run[*]@Q}" /dev/null >"$work/tty.out" 2>&1
+grep -q "methods and the oracle along the path: [0-9]*/20 frames ([0-9]*%), [0-9]* s, about [0-9]* s left" "$work/tty.out" && pass || fail "progress: nothing shown on a terminal"
+script -qec "${long_run[*]@Q} --quiet" /dev/null >"$work/tty-quiet.out" 2>&1
+grep -q "along the path:" "$work/tty-quiet.out" && fail "progress: shown with --quiet" || pass
+"${long_run[@]}" >/dev/null 2>"$work/not-tty.err"
+grep -q "along the path:" "$work/not-tty.err" && fail "progress: shown when stderr is not a terminal" || pass
 # The report page from a report of a scene file: drawn again by `cullcheck html` (the map's scene
 # rebuilt from the report's replay flags); a report whose scene is gone still gets its page, exit 2.
 expect_exit 0 "html of a report" "$cc" html "$work/sweep.json" -o "$work/sweep.html"

@@ -1,4 +1,5 @@
 #include "reports/claims.hpp"
+#include "core/progress.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -148,7 +149,8 @@ std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& op
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
   MethodOptions method_options;
-  for (int index = 0; index < options.scenes; ++index) {
+  Progress progress("claims search: the shadow elevation rule", std::size_t(options.scenes), "scenes");
+  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
     const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(index);
     const SceneSource source = search_scene(seed, index);
     const Scene scene = source.load();
@@ -195,7 +197,8 @@ std::vector<ClaimCheck> check_image_space_pitch_roll(const ClaimSearchOptions& o
                            "oh_is");
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
-  for (int index = 0; index < options.scenes; ++index) {
+  Progress progress("claims search: OH(IS) with pitch and roll", std::size_t(options.scenes), "scenes");
+  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
     const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(index);
     const SceneSource source = search_scene(seed, index);
     const Scene scene = source.load();

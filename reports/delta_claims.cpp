@@ -1,4 +1,5 @@
 #include "reports/delta_claims.hpp"
+#include "core/progress.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -59,7 +60,8 @@ std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& opt
   guarded.method = "delta_h_guarded";
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
-  for (int index = 0; index < options.scenes; ++index) {
+  Progress progress("claims search: ΔH from a lateral move", std::size_t(options.scenes), "scenes");
+  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
     const SceneSource source = search_scene(options.seed, index);
     const Scene scene = source.load();
     if (scene.buildings.empty()) continue;

@@ -1,4 +1,5 @@
 #include "reports/fuzzing.hpp"
+#include "core/progress.hpp"
 
 #include <rapidcheck.h>
 
@@ -180,10 +181,11 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
   }
   const auto gen = generators::rcgen::fuzz_case(generators::rcgen::fuzz_scene_spec(), result.ready.orthographic);
   bool failing = false;
+  Progress progress("fuzzing " + result.subject_name, options.budget, "cases");
   auto property = [&] {
     const generators::FuzzCase c = *gen;
     if (failing) ++result.shrink_runs;
-    else ++result.cases, ++result.kinds[c.kind], ++result.scenes[c.spec.generator];
+    else ++result.cases, ++result.kinds[c.kind], ++result.scenes[c.spec.generator], progress.advance();
     CaseOutcome outcome = run_case(c, options, work.path());
     if (!failing) {
       result.oracle_frames += outcome.verification.oracle.frames_checked;

@@ -1,4 +1,5 @@
 #include "reports/shrinking_claims.hpp"
+#include "core/progress.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -85,7 +86,8 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
     }
   }
   const double radii[] = {0.5, 2.0, 8.0};
-  for (int index = 0; index < options.scenes; ++index) {
+  Progress progress("claims search: region shrinking", std::size_t(options.scenes), "scenes");
+  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
     const SceneSource source = search_scene(options.seed, index);
     const Scene scene = source.load();
     if (scene.buildings.empty()) continue;

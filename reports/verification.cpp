@@ -1,4 +1,5 @@
 #include "reports/verification.hpp"
+#include "core/progress.hpp"
 
 #include "engine/shrinking/circle_tiling.hpp"
 
@@ -216,6 +217,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   for (const MethodRun& run : out.runs) pixels = pixels || run.pixel_error_budget.has_value();
   out.pixels.enabled = pixels;
   const double frame_seconds = path.frames_per_second > 0 ? 1.0 / path.frames_per_second : 0.0;
+  Progress progress("methods and the oracle along the path", path.frames.size(), "frames");
   for (std::size_t frame = 0; frame < path.frames.size(); ++frame) {
     const Camera& camera = path.frames[frame];
     const std::size_t index = options.first_frame + frame;  // the frame's number along the original path
@@ -236,6 +238,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       break;
     }
     out.frames_run = frame + 1;
+    progress.advance();
     for (m = 0; m < n; ++m) {
       MethodRun& run = out.runs[m];
       if (!results[m]) {

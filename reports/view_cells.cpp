@@ -1,4 +1,5 @@
 #include "reports/view_cells.hpp"
+#include "core/progress.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -91,7 +92,8 @@ nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, c
       std::size_t unions_differ = 0, violations = 0, viewpoints = 0;
       nlohmann::json first = nlohmann::json::array();
       std::size_t next_checked = 0;
-      for (std::size_t k = 0; k < chosen.size(); ++k) {
+      Progress progress("view cells: " + name + " (" + std::string(cell_sampling_name(sampling)) + ")", chosen.size(), "cells");
+      for (std::size_t k = 0; k < chosen.size(); ++k, progress.advance()) {
         const ViewCell cell{(*cells)[chosen[k]].ring, options.eye_height};
         const ViewCellResult plain = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/false);
         plain_ms.push_back(plain.stats.cull_ms);

@@ -17,12 +17,17 @@
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
 #include "core/errors.hpp"
+#include "core/progress.hpp"
 #include "subjects/subject_error.hpp"
 
 int main(int argc, char** argv) {
   namespace cli = cullcheck::cli;
   CLI::App app{"cullcheck: urban occlusion culling held to an oracle (Embree + CGAL) on seeded cities"};
   app.require_subcommand(1);
+  // --quiet anywhere on the line (fallthrough: after the subcommand too) turns progress off.
+  bool quiet = false;
+  app.add_flag("--quiet,-q", quiet, "No progress lines on stderr (shown only when stderr is a terminal, for runs over 2 s)");
+  app.fallthrough();
   const std::vector<std::pair<CLI::App*, cli::Runner>> subcommands = [&] {
     std::vector<std::pair<CLI::App*, cli::Runner>> out;
     for (auto add : {cli::add_generate, cli::add_cull, cli::add_verify, cli::add_region, cli::add_cell, cli::add_vbaoi,
@@ -39,6 +44,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : cli::kExitBadInput;
   }
 
+  if (quiet) cullcheck::Progress::set_mode(cullcheck::Progress::Mode::never);
   try {
     for (const auto& [sub, run] : subcommands)
       if (*sub) return run();

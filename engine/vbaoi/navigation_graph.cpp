@@ -1,4 +1,5 @@
 #include "engine/vbaoi/navigation_graph.hpp"
+#include "core/progress.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -89,6 +90,7 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
   graph.method_claims_conservative = workers[0]->method_claims_conservative();
   const unsigned threads = std::max(1u, std::min<unsigned>(options.threads, static_cast<unsigned>(regions.size())));
 
+  Progress progress("VbAoI graph: the view cell of every navigable region", regions.size(), "nodes");
   std::atomic<std::size_t> next{0};
   std::atomic<std::uint64_t> samples{0};
   std::exception_ptr failure;
@@ -109,6 +111,7 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
         std::sort(node.neighbours.begin(), node.neighbours.end());
         graph.stats.node_ms[i] = v.stats.cull_ms;
         samples += v.samples;
+        progress.advance();
       }
     } catch (...) {
       const std::lock_guard lock(failure_mutex);
