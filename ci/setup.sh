@@ -13,11 +13,13 @@ cmake --build --preset default -j "$(nproc)"
 # example subject (its shrunk counterexample in cullcheck-counterexample/; a finding about the
 # example, reported in report.json's "fuzz" and the claims ledger, not a failure of the gate),
 # and a short soak of the built-in conservative methods (report.json's "soak"); the report page
-# report.html (reports/html/: opens offline) and its screenshot.
+# report.html (reports/html/: opens offline) and its screenshot, with the region radius sweep
+# and the knobs' sweeps on its Pareto plot.
 ./build/apps/cullcheck/cullcheck report --table-4-1 --view-cells --view-cell-stride 10 --view-cell-oracle-cells 3 \
   --vbaoi --subject build/examples/subjects/builtin_subject \
   --fuzz-subject build/examples/subjects/buggy_sphere_subject --fuzz-budget 200 --fuzz-seed 1 --soak-budget 2000 \
-  --output report.json --html report.html
+  --region-sweep 0.5,1,1.41,2,4 --knob-sweep horizon_bins=1024,4096,16384 --knob-sweep quadtree_leaf_size=2,8,32 \
+  --knob-sweep delta_radius=0.25,0.5,1 --output report.json --html report.html
 # The page's screenshot beside it (headless Chromium; the browser test keeps one of a short run too).
 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1280,2400 \
   --screenshot="$PWD/report-page.png" "file://$PWD/report.html" 2>/dev/null >/dev/null && echo "wrote report-page.png"

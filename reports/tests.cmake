@@ -34,3 +34,8 @@ add_test(NAME report_page_test COMMAND report_page_test)
 # The report page in headless Chromium (a short main job; the screenshot is the run's artifact).
 add_test(NAME report_page_browser_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/html/tests/browser_test.sh $<TARGET_FILE:cullcheck>
   ${PROJECT_BINARY_DIR}/artifacts)
+
+# The knob sweep (report --knob-sweep): the flag, the methods each knob reaches, a sweep on a small city.
+add_executable(knob_sweep_test ${CMAKE_CURRENT_LIST_DIR}/tests/knob_sweep_test.cpp)
+target_link_libraries(knob_sweep_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
+add_test(NAME knob_sweep_test COMMAND knob_sweep_test)

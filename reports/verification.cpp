@@ -287,6 +287,8 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
     oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
     ++out.oracle.frames_checked;
+    out.checked_frames.push_back(index);
+    out.checked_visible.push_back(answer.visible);
     out.oracle.seconds += answer.elapsed_seconds;
     if (answer.sampling) {
       ++out.oracle.frames_ray_sampling;

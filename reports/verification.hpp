@@ -176,6 +176,10 @@ struct PixelSummary {
 
 struct PathVerification {
   std::vector<MethodRun> runs;
+  // The frames the oracle checked (numbers along the path) and what it saw at each, sorted ids:
+  // what a re-run of the methods with other knobs is held to (knob_sweep.hpp).
+  std::vector<std::size_t> checked_frames;
+  std::vector<std::vector<ObjectId>> checked_visible;
   std::vector<RegionRun> regions;
   OracleSummary oracle;
   PixelSummary pixels;

@@ -18,6 +18,7 @@
 #include "reports/subject_claims.hpp"
 #include "reports/gate_verdict.hpp"
 #include "reports/junit.hpp"
+#include "reports/knob_sweep.hpp"
 #include "reports/region_sweep.hpp"
 #include "reports/report.hpp"
 #include "reports/scaling.hpp"
@@ -40,6 +41,7 @@ Runner add_report(CLI::App& app) {
     std::optional<std::size_t> map_frame;
     std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
     std::vector<double> region_sweep_radii;
+    std::vector<std::string> knob_sweeps;
     ClaimSearchOptions claim_options;
     std::vector<int> scaling_grids;
     int scaling_frames = 1000;
@@ -80,6 +82,10 @@ Runner add_report(CLI::App& app) {
                      "0.25,0.5,1,1.41,2,4: PVS size, frames each PVS serves and its cost, into report.json's \"region_sweep\"")
       ->delimiter(',')
       ->check(CLI::Range(1e-6, 1e4));
+  sub->add_option("--knob-sweep", f->knob_sweeps,
+                  "Also run the point methods a knob affects along the path at each value, held to this run's oracle at its "
+                  "checked frames, e.g. horizon_bins=256,1024,4096 (repeatable; knobs: horizon_bins, quadtree_leaf_size, "
+                  "delta_radius, delta_height, delta_turn): into report.json's \"knob_sweep\" and the page's Pareto plot");
   sub->add_option("--method", f->methods, "Comma-separated methods, or 'all'")->capture_default_str();
   sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
   sub->add_option("--html", f->html,
@@ -139,6 +145,8 @@ Runner add_report(CLI::App& app) {
         start = comma + 1;
       }
     }
+    std::vector<KnobSweep> sweeps;  // bad knob sweeps fail before the long run too
+    for (const std::string& text : f->knob_sweeps) sweeps.push_back(parse_knob_sweep(text));
     std::optional<Scene> vbaoi_scene;  // bad VbAoI input fails before the long run too
     if (f->vbaoi_section) {
       f->vbaoi.resolved();
@@ -191,6 +199,10 @@ Runner add_report(CLI::App& app) {
           region_radius_sweep(scene, path, options.region_methods.empty() ? region_method_names() : options.region_methods,
                                   f->region_sweep_radii, f->regions.turn, options.region_on_tiling, f->tuning.options);
       std::cout << region_sweep_table(document["region_sweep"]);
+    }
+    if (!sweeps.empty()) {
+      document["knob_sweep"] = knob_sweep(scene, path, parse_methods(f->methods), f->tuning.options, sweeps, v);
+      std::cout << knob_sweep_table(document["knob_sweep"]);
     }
     std::size_t section_violations = 0;
     if (f->table_41) {

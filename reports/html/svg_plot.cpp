@@ -88,7 +88,7 @@ std::string svg_plot(const Plot& plot) {
     for (const PlotPoint& p : s.points) (x.drawable(p.x) && y.drawable(p.y) ? drawable : hidden) += 1;
 
   // Layout: the plot area, the legend to its right.
-  const double left = 70, top = 34, legend_width = 270, bottom = 52;
+  const double left = 70, top = 34, legend_width = 290, bottom = 52;
   const double right = plot.width - legend_width, base = plot.height - bottom;
   auto px = [&](double v) { return svg_coordinate(x.pixel(v, left, right)); };
   auto py = [&](double v) { return svg_coordinate(y.pixel(v, base, top)); };
@@ -124,7 +124,8 @@ std::string svg_plot(const Plot& plot) {
   // Series, each in its colour; a legend entry per series.
   for (std::size_t k = 0; k < plot.series.size(); ++k) {
     const PlotSeries& s = plot.series[k];
-    const std::string colour = series_colour(k);
+    const std::string colour = s.colour.empty() ? series_colour(k) : s.colour;
+    const std::string dash = " stroke-dasharray=\"" + (s.dash.empty() ? std::string("5 3") : s.dash) + "\"";
     svg += "<g class=\"series\" data-series=\"" + escape(s.name) + "\">";
     if (s.joined) {
       std::string points;
@@ -132,7 +133,7 @@ std::string svg_plot(const Plot& plot) {
         if (x.drawable(p.x) && y.drawable(p.y)) points += (points.empty() ? "" : " ") + px(p.x) + "," + py(p.y);
       if (!points.empty())
         svg += "<polyline fill=\"none\" stroke=\"" + colour + "\" stroke-width=\"1.6\"" +
-               (s.dashed ? " stroke-dasharray=\"5 3\"" : "") + " points=\"" + points + "\"/>";
+               (s.dashed ? dash : "") + " points=\"" + points + "\"/>";
     }
     if (s.markers)
       for (const PlotPoint& p : s.points) {
@@ -145,7 +146,7 @@ std::string svg_plot(const Plot& plot) {
     const double ly = top + 6 + 16.0 * double(k);
     svg += "<g class=\"legend\"><line x1=\"" + svg_coordinate(right + 12) + "\" y1=\"" + svg_coordinate(ly) + "\" x2=\"" +
            svg_coordinate(right + 30) + "\" y2=\"" + svg_coordinate(ly) + "\" stroke=\"" + colour + "\" stroke-width=\"3\"" +
-           (s.dashed ? " stroke-dasharray=\"5 3\"" : "") + "/><text x=\"" + svg_coordinate(right + 36) + "\" y=\"" +
+           (s.dashed ? dash : "") + "/><text x=\"" + svg_coordinate(right + 36) + "\" y=\"" +
            svg_coordinate(ly + 4) + "\">" + escape(s.name) + "</text></g>\n";
   }
   svg += "</svg>\n";

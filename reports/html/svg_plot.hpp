@@ -45,6 +45,8 @@ struct PlotSeries {
   bool joined = true;             // a line through the points
   bool markers = true;            // a circle at each point
   bool dashed = false;
+  std::string colour;  // empty: series_colour of its place in the plot
+  std::string dash;    // an SVG stroke-dasharray when dashed; empty: "5 3"
 };
 
 struct Plot {

@@ -60,10 +60,10 @@ TEST(SvgPlot, DrawsEachPointWhereTheAxesPutIt) {
   p.title = "t";
   p.series.push_back(make_series("a <b>", {{0.0, 0.0}, {100.0, 100.0}}));
   const std::string svg = svg_plot(p);
-  // Plot area: x from 70 to width - legend (860 - 270 = 590), y from 380 - 52 = 328 up to 34.
+  // Plot area: x from 70 to width - legend (860 - 290 = 570), y from 380 - 52 = 328 up to 34.
   EXPECT_NE(svg.find("<circle cx=\"70.00\" cy=\"328.00\""), std::string::npos) << svg;
-  EXPECT_NE(svg.find("<circle cx=\"590.00\" cy=\"34.00\""), std::string::npos) << svg;
-  EXPECT_NE(svg.find("points=\"70.00,328.00 590.00,34.00\""), std::string::npos);
+  EXPECT_NE(svg.find("<circle cx=\"570.00\" cy=\"34.00\""), std::string::npos) << svg;
+  EXPECT_NE(svg.find("points=\"70.00,328.00 570.00,34.00\""), std::string::npos);
   EXPECT_NE(svg.find("id=\"plot-test\""), std::string::npos);
   EXPECT_NE(svg.find("data-points=\"2\""), std::string::npos);
   EXPECT_NE(svg.find("a &lt;b&gt;"), std::string::npos) << "series names are escaped";
