@@ -137,6 +137,20 @@ int main(int argc, char** argv) {
     put("fuzz_geojson", "utm.geojson",
         R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::26919"}},"features":[)"
         R"({"type":"Feature","properties":{"height":9.5},"geometry":{"type":"Polygon","coordinates":[[[329000.5,4691000.25],[329020.5,4691000.25],[329020.5,4691020.25],[329000.5,4691000.25]]]}}]})");
+    // CityJSON: a Building with a GroundSurface and measuredHeight, one of two parts (one
+    // without semantics), a TINRelief; a 1.0 file without a transform.
+    const std::string cube = R"([[[[0,1,5,4]],[[1,2,6,5]],[[2,3,7,6]],[[3,0,4,7]],[[4,5,6,7]],[[0,3,2,1]]]])";
+    const std::string cube_vertices = R"([0,0,0],[200,0,0],[200,100,0],[0,100,0],[0,0,400],[200,0,400],[200,100,400],[0,100,400])";
+    put("fuzz_cityjson", "parts.city.json",
+        R"({"type":"CityJSON","version":"1.1","transform":{"scale":[0.01,0.01,0.01],"translate":[100,200,3]},"CityObjects":{)"
+        R"("a":{"type":"Building","attributes":{"measuredHeight":7.5,"RelativeRidgeHeight":4},"geometry":[{"type":"Solid","lod":"2.2","boundaries":)" +
+            cube + R"(,"semantics":{"surfaces":[{"type":"WallSurface"},{"type":"GroundSurface"}],"values":[[0,0,0,0,0,1]]}}]},)"
+        R"("b":{"type":"Building","children":["b1"]},"b1":{"type":"BuildingPart","parents":["b"],"geometry":[{"type":"MultiSurface","lod":2,"boundaries":[[[0,1,2,3]],[[4,5,6,7]]]}]},)"
+        R"("t":{"type":"TINRelief","geometry":[{"type":"CompositeSurface","lod":1,"boundaries":[[[0,1,2]]]}]}},"vertices":[)" +
+            cube_vertices + "]}");
+    put("fuzz_cityjson", "plain.city.json",
+        R"({"type":"CityJSON","version":"1.0","CityObjects":{"x":{"type":"Building","geometry":[{"type":"MultiSolid","lod":1,"boundaries":[)" + cube +
+            R"(]}]}},"vertices":[[0,0,0],[2,0,0],[2,1,0],[0,1,0],[0,0,4],[2,0,4],[2,1,4],[0,1,4]]})");
     // Hand-written shapes the writers never produce: y-up OBJ with polygons and negative indices.
     put("fuzz_obj", "polygons.obj", "o quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\ng tri\nv 0 0 1\nf -1 -2 -3\n");
     put("fuzz_scene_json", "version2_named.json",

@@ -46,14 +46,18 @@ CrsKind describe_crs(const std::string& crs, const std::string& where) {
   CrsKind kind;
   const char* name = proj_get_name(pj.get());
   kind.name = name ? name : crs;
-  const PJ_TYPE type = proj_get_type(pj.get());
+  // A compound CRS (a plan CRS with a vertical one, as CityJSON's EPSG:7415 = RD New + NAP
+  // height): its plan part decides, heights are taken in metres as the file gives them.
+  const Pj horizontal(proj_get_type(pj.get()) == PJ_TYPE_COMPOUND_CRS ? proj_crs_get_sub_crs(ctx.get(), pj.get(), 0) : nullptr);
+  const PJ* plan_crs = horizontal ? horizontal.get() : pj.get();
+  const PJ_TYPE type = proj_get_type(plan_crs);
   if (is_geographic(type)) {
     kind.geographic = true;
     return kind;
   }
   if (type != PJ_TYPE_PROJECTED_CRS)
     throw InputError(where, "crs", "'" + crs + "' (" + kind.name + ") is neither projected nor geographic; footprints need a plan CRS");
-  const Pj cs(proj_crs_get_coordinate_system(ctx.get(), pj.get()));
+  const Pj cs(proj_crs_get_coordinate_system(ctx.get(), plan_crs));
   double factor = 0.0;
   const char* unit = nullptr;
   if (!cs || proj_cs_get_axis_count(ctx.get(), cs.get()) < 2 ||

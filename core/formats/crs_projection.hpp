@@ -8,7 +8,9 @@
 //  - geographic (longitude/latitude in degrees, any datum): projected onto a transverse Mercator
 //    touching the ellipsoid at the data's centre (scale error under 1e-5 within 30 km of it),
 //    axis order taken as GeoJSON's (longitude first) whatever the CRS's own definition says.
-// Anything else (a vertical or compound CRS, a name PROJ does not know) is an InputError.
+// A compound CRS (plan + vertical, e.g. EPSG:7415 RD New + NAP) is read by its plan part, its
+// heights taken as metres. Anything else (a vertical CRS alone, a name PROJ does not know) is an
+// InputError.
 #pragma once
 
 #include <string>

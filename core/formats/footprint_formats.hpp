@@ -41,6 +41,25 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
 // One line saying what a footprint import did with every feature (its counts and CRS).
 std::string footprint_import_summary(const ImportReport& report);
 
+// CityJSON 1.0 to 2.0 city models (cityjson_reader.cpp), read as footprints with heights:
+//  - Vertices through the file's transform (scale, translate). Every Building and BuildingPart
+//    with Solid, MultiSurface, CompositeSurface, MultiSolid or CompositeSolid geometry (its
+//    highest LoD) becomes a building per ground surface: its GroundSurface faces (semantics), else
+//    the faces flat at its lowest point, else the convex hull of its plan (named in the notes).
+//    A Building made only of parts is its parts; other objects (TINRelief terrain, roads, ...) are
+//    skipped and counted. Ids 0, 1, 2, ... in the order of the objects' ids.
+//  - Height: --height-attribute / --storeys-attribute when given (e.g. RelativeRidgeHeight),
+//    else the attribute measuredHeight, else the geometry's own extent (its top above its lowest
+//    point). Every building stands on z = 0: terrain is not modelled, so a building on a slope
+//    keeps its height above its own ground.
+//  - CRS: --crs, else metadata.referenceSystem (a compound CRS by its plan part).
+// The roof shapes and walls of LoD2 are not kept: a building is its footprint's prism.
+Scene read_cityjson(const std::string& path, const FootprintOptions& options = {}, ImportReport* report = nullptr);
+Scene cityjson_from_text(const std::string& text, const FootprintOptions& options = {}, ImportReport* report = nullptr,
+                         const std::string& where = "CityJSON");
+// Whether a .json file's text is CityJSON (it says "type": "CityJSON" within its first 4 KiB).
+bool looks_like_cityjson(const std::string& text);
+
 // Whether a .json file's text is GeoJSON rather than cullcheck's scene JSON (it says
 // "FeatureCollection" or "Feature" as its type within its first 4 KiB).
 bool looks_like_geojson(const std::string& text);

@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/formats/crs_projection.hpp"
 #include "core/formats/footprint_formats.hpp"
+#include "core/formats/footprint_rings.hpp"
 #include "core/formats/mesh_formats.hpp"
 #include "core/scene_io.hpp"
 
@@ -76,29 +77,6 @@ std::optional<double> height_of(const json& properties, const FootprintOptions& 
   return v;
 }
 
-// The ring without its closing vertex, repeated vertices and spikes (a vertex where the outline
-// goes straight back along the edge it came in on). `changed`: more than the closing vertex went.
-std::vector<Vec2> cleaned(std::vector<Vec2> ring, bool& changed) {
-  changed = false;
-  while (ring.size() >= 2 && ring.front() == ring.back()) ring.pop_back();
-  for (bool again = true; again && ring.size() >= 3;) {
-    again = false;
-    for (std::size_t i = 0; i < ring.size() && ring.size() >= 3; ++i) {
-      const std::size_t n = ring.size();
-      const Vec2 a = ring[(i + n - 1) % n], b = ring[i], c = ring[(i + 1) % n];
-      const Vec2 in = b - a, out = c - b;
-      const bool repeated = b == c;
-      const bool spike = cross(in, out) == 0.0 && dot(in, out) < 0.0;
-      if (repeated || spike) {
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-        changed = again = true;
-        break;
-      }
-    }
-  }
-  return ring;
-}
-
 // The CRS the coordinates are in, by FootprintOptions::crs, the file's "crs" member or RFC 7946.
 // Empty for "local"; `how` says where it came from.
 std::string crs_of(const json& doc, const FootprintOptions& o, const std::string& where, std::string& how) {
@@ -126,7 +104,7 @@ std::string crs_of(const json& doc, const FootprintOptions& o, const std::string
 
 std::string footprint_import_summary(const ImportReport& r) {
   std::ostringstream s;
-  s << r.features << " features: " << r.buildings << " buildings (" << r.parts_split << " from MultiPolygon parts beyond the first, "
+  s << r.features << " features: " << r.buildings << " buildings (" << r.parts_split << " split off as further parts (MultiPolygon parts, extra ground surfaces), "
     << r.heights_defaulted << " given --missing-height, " << r.rings_repaired << " rings repaired, " << r.holes_filled
     << " holes filled); skipped: " << r.skipped_invalid << " invalid, " << r.skipped_no_height << " without a height, "
     << r.skipped_not_polygon << " not polygons; CRS: " << r.crs;
@@ -262,7 +240,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
     for (Part& part : parts) {
       const std::string name = feature_name(part.feature) + (part.part ? " part " + std::to_string(part.part) : "");
       bool changed = false;
-      std::vector<Vec2> ring = cleaned(std::move(part.outer), changed);
+      std::vector<Vec2> ring = cleaned_ring(std::move(part.outer), changed);
       for (Vec2 v : ring)
         if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate))
           throw InputError(where, feature_name(part.feature) + ".geometry.coordinates", "lies beyond 1e9 m from the origin");

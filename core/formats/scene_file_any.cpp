@@ -17,6 +17,7 @@ Scene read_scene_file_any(const std::string& path, const ImportOptions& options,
   if (ext == ".json") {
     const std::string text = read_text_file(path);
     if (looks_like_geojson(text)) return geojson_from_text(text, options.footprints, report, "file " + path);
+    if (looks_like_cityjson(text)) return cityjson_from_text(text, options.footprints, report, "file " + path);
     try {  // as read_scene_file, without reading the file a second time
       return scene_from_json_text(text);
     } catch (const InputError& e) {
