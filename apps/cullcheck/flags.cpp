@@ -23,7 +23,8 @@ void SceneFlags::add(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--scene", source.file,
                  "Read the scene from this file instead of generating it: cullcheck scene JSON, glTF 2.0 (.glb, .gltf), OBJ, "
-                 "or GeoJSON building footprints (.geojson; see --height-attribute, --storeys-attribute, --crs)");
+                 "or building footprints with heights: GeoJSON (.geojson) or CityJSON (.json, .city.json; see --height-attribute, "
+                 "--storeys-attribute, --crs)");
   const std::map<std::string, formats::IdSource> id_sources{{"node", formats::IdSource::node}, {"mesh", formats::IdSource::mesh}};
   app.add_option("--mesh-ids", source.mesh_ids, "glTF scenes: one object per node (node, the default) or per glTF mesh (mesh)")
       ->transform(CLI::CheckedTransformer(id_sources, CLI::ignore_case).description(""))
