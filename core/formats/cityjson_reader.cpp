@@ -188,10 +188,8 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       scale = {t["scale"][0].get<double>(), t["scale"][1].get<double>(), t["scale"][2].get<double>()};
       translate = {t["translate"][0].get<double>(), t["translate"][1].get<double>(), t["translate"][2].get<double>()};
     }
-    const json& vs = doc.value("vertices", json());
     if (!doc.contains("vertices") || !doc["vertices"].is_array()) throw InputError(where, "vertices", "must be an array of [x, y, z]");
     if (doc["vertices"].size() > kMaxMeshVertices) throw InputError(where, "vertices", "has more than 50,000,000 entries");
-    (void)vs;
     std::vector<Vec3> vertices;
     vertices.reserve(doc["vertices"].size());
     for (std::size_t i = 0; i < doc["vertices"].size(); ++i) {
@@ -216,7 +214,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       double height;
     };
     std::vector<Footprint> footprints;
-    std::size_t made_of_parts = 0, from_hull = 0, terrain = 0;
+    std::size_t made_of_parts = 0, terrain = 0;
     for (const auto& [id, object] : doc["CityObjects"].items()) {
       const std::string name = "CityObjects[\"" + id + "\"]";
       ++report.features;
@@ -279,7 +277,6 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
         }
       if (grounds.empty()) {
         grounds.push_back(convex_hull(plan_points));
-        ++from_hull;
         note(report, name + ": no ground surface, footprint from the convex hull of its plan");
       }
       report.holes_filled += holes;
@@ -319,12 +316,8 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       bool changed = false;
       std::vector<Vec2> ring = cleaned_ring(std::move(f.ring), changed);
       if (ring.size() >= 3 && signed_area(ring) < 0.0) std::reverse(ring.begin(), ring.end());  // ground faces look down
-      std::string why;
-      if (ring.size() < 3) why = "fewer than 3 distinct vertices";
-      else if (ring.size() > kMaxFootprintVertices) why = "more than 4096 vertices";
-      else if (!is_simple(ring)) why = "edges cross or touch";
-      else if (!(std::abs(signed_area(ring)) > 0.0)) why = "zero area";
-      else if (f.height > kMaxHeight) why = "a height beyond 1e4 m";
+      std::string why = footprint_problem(ring);
+      if (why.empty() && f.height > kMaxHeight) why = "a height beyond 1e4 m";
       if (!why.empty()) {
         ++report.skipped_invalid;
         note(report, f.object + ": footprint " + why + (changed ? " after repair" : "") + ", skipped");
@@ -347,7 +340,6 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
                                                  " city objects became a building (" + std::to_string(report.skipped_no_height) +
                                                  " without a usable height, " + std::to_string(report.skipped_invalid) +
                                                  " invalid, " + std::to_string(report.skipped_not_polygon) + " not buildings)");
-    (void)from_hull;
     rebase_if_far(scene);
     report.objects = report.buildings = scene.buildings.size();
     if (report_out) *report_out = std::move(report);

@@ -1,6 +1,10 @@
 #include "core/formats/footprint_rings.hpp"
 
+#include <cmath>
 #include <cstddef>
+
+#include "core/scene.hpp"
+#include "core/scene_io.hpp"
 
 namespace cullcheck::formats {
 
@@ -23,6 +27,14 @@ std::vector<Vec2> cleaned_ring(std::vector<Vec2> ring, bool& changed) {
     }
   }
   return ring;
+}
+
+std::string footprint_problem(const std::vector<Vec2>& ring) {
+  if (ring.size() < 3) return "fewer than 3 distinct vertices";
+  if (ring.size() > kMaxFootprintVertices) return "more than 4096 vertices";
+  if (!is_simple(ring)) return "edges cross or touch";
+  if (!(std::abs(signed_area(ring)) > 0.0)) return "zero area";
+  return "";
 }
 
 }  // namespace cullcheck::formats

@@ -244,11 +244,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
       for (Vec2 v : ring)
         if (!(std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate))
           throw InputError(where, feature_name(part.feature) + ".geometry.coordinates", "lies beyond 1e9 m from the origin");
-      std::string why;
-      if (ring.size() < 3) why = "fewer than 3 distinct vertices";
-      else if (ring.size() > kMaxFootprintVertices) why = "more than 4096 vertices";
-      else if (!is_simple(ring)) why = "edges cross or touch";
-      else if (!(std::abs(signed_area(ring)) > 0.0)) why = "zero area";
+      std::string why = footprint_problem(ring);
       if (!why.empty()) {
         ++report.skipped_invalid;
         note(report, name + ": footprint " + why + (changed ? " after repair" : "") + ", skipped");

@@ -10,13 +10,6 @@ namespace {
 
 using nlohmann::json;
 
-const json& member(const json& object, const char* key) {
-  static const json null;
-  if (!object.is_object()) return null;
-  const auto it = object.find(key);
-  return it == object.end() ? null : *it;
-}
-
 std::vector<double> numbers(const json& array) {
   std::vector<double> out;
   if (!array.is_array()) return out;

@@ -10,6 +10,8 @@
 
 namespace cullcheck::html {
 
+// object[key], or null when object is not an object or has no such key.
+const nlohmann::json& member(const nlohmann::json& object, const char* key);
 // A JSON number as a double, NaN when it is missing, null or not a number.
 double value_of(const nlohmann::json& object, const char* key);
 // A JSON string, or `fallback`.

@@ -78,6 +78,13 @@ std::string guarded(const char* name, const std::function<std::string()>& sectio
 
 }  // namespace
 
+const nlohmann::json& member(const nlohmann::json& object, const char* key) {
+  static const nlohmann::json null;
+  if (!object.is_object()) return null;
+  const auto it = object.find(key);
+  return it == object.end() ? null : *it;
+}
+
 double value_of(const nlohmann::json& object, const char* key) {
   if (!object.is_object()) return NAN;
   const auto it = object.find(key);
