@@ -358,3 +358,16 @@ TEST(ViewCell, PvsHoldsFromEyesLookingDownANarrowGap) {
 
 }  // namespace
 }  // namespace cullcheck
+
+// A sliver of free space 2 km from the origin (a free-space cell of Boston's 22,178 footprints
+// was one): its area, 1.1e-10 m², rounds to 0 when the shoelace sum is taken about the origin
+// (the VbAoI graph refused the city, "view cell: has no area"); about its first vertex it stays
+// positive.
+TEST(ViewCellChecks, AFarThinCellKeepsItsArea) {
+  const cullcheck::ViewCell cell{{{1782.0028319837784, 2454.9482243440752}, {1815.8952355497418, 2454.9482243440752},
+                                  {1815.8952355497418, 2454.948224344085}},
+                                 1.7};
+  EXPECT_NO_THROW(cullcheck::cell_samples(cell, 1.0, cullcheck::CellSampling::boundary));
+  const cullcheck::ViewCell flat{{{0.0, 0.0}, {1.0, 0.0}, {2.0, 0.0}}, 1.7};
+  EXPECT_THROW(cullcheck::cell_samples(flat, 1.0, cullcheck::CellSampling::boundary), std::invalid_argument);
+}

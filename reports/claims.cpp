@@ -1,7 +1,11 @@
 #include "reports/claims.hpp"
 #include "core/progress.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <exception>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 
@@ -134,6 +138,64 @@ ClaimCheck claim(std::string id, std::string source, std::string statement, std:
 
 }  // namespace
 
+namespace {
+unsigned search_threads(unsigned threads, int scenes) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return std::max(1u, std::min<unsigned>(threads == 0 ? cores : threads, static_cast<unsigned>(std::max(1, scenes))));
+}
+}  // namespace
+
+oracle::OracleOptions for_one_scene(oracle::OracleOptions options, unsigned threads, int scenes) {
+  if (search_threads(threads, scenes) > 1) options.sampling.threads = 1;
+  return options;
+}
+
+void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>& claims, const std::string& stage,
+                   const std::function<void(int index, std::vector<ClaimCheck>& partial)>& search) {
+  if (scenes <= 0) return;
+  std::vector<ClaimCheck> blank;
+  for (const ClaimCheck* c : claims) {
+    ClaimCheck b = *c;
+    b.holds = true;
+    b.frames_checked = b.violations = 0;
+    b.counterexample_replay.clear(), b.counterexample_detail.clear();
+    blank.push_back(std::move(b));
+  }
+  std::vector<std::vector<ClaimCheck>> partials(static_cast<std::size_t>(scenes), blank);
+  std::vector<std::exception_ptr> failures(static_cast<std::size_t>(scenes));
+  Progress progress(stage, static_cast<std::size_t>(scenes), "scenes");
+  std::atomic<int> next{0};
+  auto work = [&] {
+    for (int i = next++; i < scenes; i = next++) {
+      try {
+        search(i, partials[static_cast<std::size_t>(i)]);
+      } catch (...) {
+        failures[static_cast<std::size_t>(i)] = std::current_exception();
+      }
+      progress.advance();
+    }
+  };
+  const unsigned n = search_threads(threads, scenes);
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : failures)  // the lowest scene's failure, as one thread would raise it
+    if (e) std::rethrow_exception(e);
+  for (const std::vector<ClaimCheck>& partial : partials)
+    for (std::size_t k = 0; k < claims.size(); ++k) {
+      ClaimCheck& c = *claims[k];
+      const ClaimCheck& p = partial[k];
+      c.frames_checked += p.frames_checked;
+      c.violations += p.violations;
+      if (!p.holds && c.holds) {
+        c.holds = false;
+        c.counterexample_replay = p.counterexample_replay;
+        c.counterexample_detail = p.counterexample_detail;
+      }
+    }
+}
+
 std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   ClaimCheck published = claim("thesis-3.1.2-shadow-elevation-rule",
@@ -149,8 +211,10 @@ std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& op
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
   MethodOptions method_options;
-  Progress progress("claims search: the shadow elevation rule", std::size_t(options.scenes), "scenes");
-  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
+  search_scenes(options.scenes, options.threads, {&published, &corrected}, "claims search: the shadow elevation rule",
+                [&options, &method_options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
+    ClaimCheck& published = partial[0];
+    ClaimCheck& corrected = partial[1];
     const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(index);
     const SceneSource source = search_scene(seed, index);
     const Scene scene = source.load();
@@ -178,7 +242,7 @@ std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& op
                                        (answer.sampling ? ": " + oracle::describe(answer.sampling->witnesses.at(missed.front())) : "");
       }
     }
-  }
+    });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   published.search_seconds = corrected.search_seconds = seconds;
   return {published, corrected};
@@ -197,8 +261,10 @@ std::vector<ClaimCheck> check_image_space_pitch_roll(const ClaimSearchOptions& o
                            "oh_is");
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
-  Progress progress("claims search: OH(IS) with pitch and roll", std::size_t(options.scenes), "scenes");
-  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
+  search_scenes(options.scenes, options.threads, {&tilted, &level}, "claims search: OH(IS) with pitch and roll",
+                [&options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
+    ClaimCheck& tilted = partial[0];
+    ClaimCheck& level = partial[1];
     const std::uint64_t seed = options.seed + static_cast<std::uint64_t>(index);
     const SceneSource source = search_scene(seed, index);
     const Scene scene = source.load();
@@ -227,7 +293,7 @@ std::vector<ClaimCheck> check_image_space_pitch_roll(const ClaimSearchOptions& o
       camera.pitch = camera.roll = 0.0;
       check(level, camera);
     }
-  }
+    });
   tilted.search_seconds = level.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return {tilted, level};
 }

@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "oracle/oracle.hpp"
 #include "oracle/sampling.hpp"
 #include "reports/scene_source.hpp"
 
@@ -20,6 +22,7 @@ struct ClaimSearchOptions {
   int scenes = 12;             // generated scenes searched
   int cameras_per_scene = 16;  // rooftop cameras per scene; 4x as many near-roof ones, half as many fly-through frames
   oracle::SamplingOptions sampling;
+  unsigned threads = 0;        // scenes searched at once; 0: every core. The ledger is the same for any number.
 };
 
 struct ClaimCheck {
@@ -36,6 +39,17 @@ struct ClaimCheck {
 };
 
 nlohmann::json to_json(const ClaimCheck& claim);
+
+// A claim search over scenes 0 .. scenes - 1 on `threads` threads (0: every core): search(index,
+// partial) checks one scene into `partial`, copies of `claims` with no result yet (same order).
+// The partials are folded into `claims` in scene order: frames and violations added, a refuted
+// claim's counterexample the one of the lowest scene that refuted it. So the ledger is what one
+// thread searching the scenes in order writes, for any number of threads. The oracle's own
+// threads are 1 within a search on more than one thread (`threaded` says which).
+// The oracle's options within one scene of search_scenes: its own threads 1 when scenes run at once.
+oracle::OracleOptions for_one_scene(oracle::OracleOptions options, unsigned threads, int scenes);
+void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>& claims, const std::string& stage,
+                   const std::function<void(int index, std::vector<ClaimCheck>& partial)>& search);
 
 // A seeded Manhattan city for a claim search: sizes drawn (in this order) from the ranges by the
 // stream (seed, tag, index), scene seed seed * 1000 + index.

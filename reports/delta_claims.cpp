@@ -60,11 +60,13 @@ std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& opt
   guarded.method = "delta_h_guarded";
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
-  Progress progress("claims search: ΔH from a lateral move", std::size_t(options.scenes), "scenes");
-  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
+  search_scenes(options.scenes, options.threads, {&published, &guarded}, "claims search: ΔH from a lateral move",
+                [&options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
+    ClaimCheck& published = partial[0];
+    ClaimCheck& guarded = partial[1];
     const SceneSource source = search_scene(options.seed, index);
     const Scene scene = source.load();
-    if (scene.buildings.empty()) continue;
+    if (scene.buildings.empty()) return;
     const generators::OpenSpace open(scene);
     const oracle::Oracle truth(scene);
     generators::Random r = generators::Random::stream(options.seed, 0xDE17B, static_cast<std::uint64_t>(index));
@@ -114,7 +116,7 @@ std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& opt
         }
       }
     }
-  }
+    });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   published.search_seconds = guarded.search_seconds = seconds;
   return {published, guarded};

@@ -86,11 +86,14 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
     }
   }
   const double radii[] = {0.5, 2.0, 8.0};
-  Progress progress("claims search: region shrinking", std::size_t(options.scenes), "scenes");
-  for (int index = 0; index < options.scenes; ++index, progress.advance()) {
+  std::vector<ClaimCheck*> claims;
+  for (Variant& v : variants) claims.push_back(&v.claim);
+  search_scenes(options.scenes, options.threads, claims, "claims search: region shrinking",
+                [&options, &variants, &radii, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](
+                    int index, std::vector<ClaimCheck>& partial) {
     const SceneSource source = search_scene(options.seed, index);
     const Scene scene = source.load();
-    if (scene.buildings.empty()) continue;
+    if (scene.buildings.empty()) return;
     const generators::OpenSpace open(scene);
     const oracle::Oracle truth(scene);
     auto point = make_method("oh_os_conservative", scene);
@@ -120,12 +123,13 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
         }
       }
       for (std::size_t m = 0; m < variants.size(); ++m) {
-        Variant& variant = variants[m];
+        const Variant& variant = variants[m];
+        ClaimCheck& claim = partial[m];
         if (variant.open_discs_only && !open_disc) continue;
         const ViewRegion region{centre, radius, 0.0};
         const std::vector<ObjectId> pvs = engines[m]->cull_region(region).pvs;
         for (const Camera& v : viewpoints) {
-          ++variant.claim.frames_checked;
+          ++claim.frames_checked;
           const std::vector<ObjectId> kept = point->cull(v).pvs;
           std::vector<ObjectId> lacking;
           std::set_difference(kept.begin(), kept.end(), pvs.begin(), pvs.end(), std::back_inserter(lacking));
@@ -133,18 +137,18 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
           const oracle::OracleAnswer seen = truth.visible_set(v, oracle_options);
           for (ObjectId id : lacking) {
             if (!std::binary_search(seen.visible.begin(), seen.visible.end(), id)) continue;
-            ++variant.claim.violations;
-            if (!variant.claim.holds) continue;
-            variant.claim.holds = false;
-            variant.claim.counterexample_replay = region_replay_command(source, variant.method, centre, radius, 0.0, v);
-            variant.claim.counterexample_detail = "building " + std::to_string(id) + " seen by the oracle (" + seen.model +
+            ++claim.violations;
+            if (!claim.holds) continue;
+            claim.holds = false;
+            claim.counterexample_replay = region_replay_command(source, variant.method, centre, radius, 0.0, v);
+            claim.counterexample_detail = "building " + std::to_string(id) + " seen by the oracle (" + seen.model +
                                                   ") from the disc's edge, ε = " + std::to_string(radius) + " m" +
                                                   (open_disc ? " (open disc)" : " (the disc touches a building)");
           }
         }
       }
     }
-  }
+    });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<ClaimCheck> out;
   for (Variant& v : variants) {

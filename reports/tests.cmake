@@ -39,3 +39,8 @@ add_test(NAME report_page_browser_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/ht
 add_executable(knob_sweep_test ${CMAKE_CURRENT_LIST_DIR}/tests/knob_sweep_test.cpp)
 target_link_libraries(knob_sweep_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
 add_test(NAME knob_sweep_test COMMAND knob_sweep_test)
+
+# Claim searches on every core: the same ledger as one thread.
+add_executable(claims_search_test ${CMAKE_CURRENT_LIST_DIR}/tests/claims_search_test.cpp)
+target_link_libraries(claims_search_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME claims_search_test COMMAND claims_search_test)

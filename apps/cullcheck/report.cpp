@@ -99,6 +99,10 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--oracle-stride", f->oracle_stride, "Check every n-th frame with the oracle")->capture_default_str();
   sub->add_option("--claim-scenes", f->claim_options.scenes, "Scenes searched per claim")->capture_default_str();
   sub->add_option("--claim-seed", f->claim_options.seed, "Seed of the claim search")->capture_default_str();
+  sub->add_option("--claim-threads", f->claim_options.threads,
+                  "Scenes of the claim search checked at once (0: every core); the ledger is the same for any number")
+      ->capture_default_str()
+      ->check(CLI::Range(0u, 256u));
   sub->add_option("--scaling-grids", f->scaling_grids,
                      "Also time the methods on thesis-layout cities of grid x grid buildings (e.g. 100,200,400,800: "
                      "10k to 640k) along a street walk, into report.json's \"scaling\"")

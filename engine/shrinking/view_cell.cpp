@@ -58,7 +58,7 @@ void check_cell(const ViewCell& cell, double epsilon, CellSampling sampling, std
     if (!std::isfinite(a.x) || !std::isfinite(a.y)) throw std::invalid_argument("view cell: vertex " + std::to_string(i) + " is not finite");
     if (a == b) throw std::invalid_argument("view cell: vertex " + std::to_string(i) + " is repeated");
     if (cross(b - a, c - b) < 0.0) throw std::invalid_argument("view cell: not convex and counter-clockwise at vertex " + std::to_string((i + 1) % r.size()));
-    area += cross(a, b);
+    area += cross(a - r[0], b - r[0]);  // about its first vertex: far-from-origin cells keep their digits
   }
   if (!(area > 0.0)) throw std::invalid_argument("view cell: has no area");
   if (!std::isfinite(cell.eye_height)) throw std::invalid_argument("view cell: eye height is not finite");
