@@ -20,7 +20,7 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 headless() {  # headless Chromium with its own profile; no sandbox (CI runs as root)
-  timeout 180 "$browser" --headless --no-sandbox --disable-gpu --no-first-run --hide-scrollbars \
+  timeout 180 "$browser" --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --no-first-run --hide-scrollbars \
     --user-data-dir="$work/profile" "$@" 2>>"$work/browser.log"
 }
 
