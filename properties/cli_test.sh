@@ -73,6 +73,10 @@ grep -q "region shrink_former (radius 2.00 m)" "$work/out" && pass || fail "veri
 expect_exit 0 "report with a region radius sweep" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
   --method oh_os_conservative --claim-scenes 1 --region-sweep 0.5,2 -o "$work/sweep.json"
 grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_sweep in report.json"
+# A horizon resolution the engine cannot take is refused by the flag, before any run.
+expect_exit 2 "horizon bins not a power of two" "$cc" verify --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' \
+  --path-params '{"frames":1}' --horizon-bins 1000
+expect_error_names "horizon bins not a power of two" "must be a power of two from 4"
 # Progress: on a terminal (script(1) gives the run one) a run over 2 s shows its stage and how
 # far it is on stderr; with --quiet, or when stderr is not a terminal, nothing.
 long_run=("$cc" verify --generator default --path-params '{"frames":20}' --method oh_os_conservative)

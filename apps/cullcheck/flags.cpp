@@ -1,6 +1,7 @@
 #include "apps/cullcheck/flags.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <thread>
 
@@ -142,7 +143,14 @@ void SamplingFlags::add(CLI::App& app) {
 
 void MethodFlags::add(CLI::App& app) {
   app.add_option("--horizon-bins", options.horizon_bins, "Occlusion horizon bins over 360 degrees (power of two)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            // What the horizons take (occlusion_horizon.cpp; OH(IS) needs at least 4), said before any run.
+            const unsigned long v = std::strtoul(text.c_str(), nullptr, 10);
+            return v >= 4 && v <= (1ul << 22) && (v & (v - 1)) == 0 ? std::string() : "must be a power of two from 4 to 4194304";
+          },
+          "POWER_OF_TWO"));
   app.add_option("--leaf-size", options.quadtree_leaf_size, "Most buildings in a quadtree leaf")
       ->capture_default_str()
       ->check(CLI::Range(1u, 1000000u));
