@@ -19,13 +19,9 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::size_t kMaxNotes = 20;
 constexpr double kGroundTolerance = 0.05;  // m: a face this close to the object's lowest point is on the ground
 
-void note(ImportReport& report, const std::string& text) {
-  if (report.notes.size() < kMaxNotes) report.notes.push_back(text);
-  else if (report.notes.size() == kMaxNotes) report.notes.push_back("(further objects are counted, not named)");
-}
+void note(ImportReport& report, const std::string& text) { add_note(report, text, "(further objects are counted, not named)"); }
 
 // One surface of a geometry: its rings (outer first) as vertex indices, and its semantic type.
 struct Surface {
@@ -95,22 +91,6 @@ std::vector<Surface> surfaces_of(const json& g, std::size_t vertex_count, const 
   };
   walk(b, depth, {});
   return out;
-}
-
-std::optional<double> attribute_height(const json& attributes, const FootprintOptions& o) {
-  if (!attributes.is_object()) return std::nullopt;
-  const std::string key = !o.height_attribute.empty() ? o.height_attribute : !o.storeys_attribute.empty() ? o.storeys_attribute : "measuredHeight";
-  const auto it = attributes.find(key);
-  if (it == attributes.end()) return std::nullopt;
-  double v = NAN;
-  if (it->is_number()) v = it->get<double>();
-  else if (it->is_string()) {
-    std::istringstream in(it->get<std::string>());
-    in.imbue(std::locale::classic());
-    if (!(in >> v)) return std::nullopt;
-  }
-  if (!o.storeys_attribute.empty() && o.height_attribute.empty()) v *= o.storey_height;
-  return std::isfinite(v) && v > 0.0 ? std::optional<double>(v) : std::nullopt;
 }
 
 std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
@@ -247,7 +227,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       for (const Surface& s : surfaces)
         for (const auto& ring : s.rings)
           for (std::size_t i : ring) z0 = std::min(z0, vertices[i].z), z1 = std::max(z1, vertices[i].z), plan_points.push_back(plan(vertices[i]));
-      std::optional<double> height = attribute_height(object.value("attributes", json()), options);
+      std::optional<double> height = attribute_height(object.value("attributes", json()), options, "measuredHeight");
       if (!height && (!options.height_attribute.empty() || !options.storeys_attribute.empty()) && options.missing_height) {
         height = options.missing_height;
         ++report.heights_defaulted;

@@ -1,7 +1,6 @@
 // GeoJSON footprints into a 2.5D scene (footprint_formats.hpp says what is read and how).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -18,8 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::size_t kMaxNotes = 20;  // notes name the first skipped features; the counts hold all
-
 // One polygon (or MultiPolygon part) waiting for its CRS: its outer ring in file units.
 struct Part {
   std::size_t feature;
@@ -31,8 +28,7 @@ struct Part {
 std::string feature_name(std::size_t i) { return "features[" + std::to_string(i) + "]"; }
 
 void note(ImportReport& report, const std::string& text) {
-  if (report.notes.size() < kMaxNotes) report.notes.push_back(text);
-  else if (report.notes.size() == kMaxNotes) report.notes.push_back("(further skipped features are counted, not named)");
+  add_note(report, text, "(further skipped features are counted, not named)");
 }
 
 // A linear ring: an array of positions, each an array of at least two numbers.
@@ -55,26 +51,6 @@ std::vector<Vec2> outer_ring(const json& polygon, const std::string& where, cons
   for (std::size_t r = 1; r < polygon.size(); ++r) ring_of(polygon[r], where, field + "[" + std::to_string(r) + "]");
   holes = polygon.size() - 1;
   return ring_of(polygon[0], where, field + "[0]");
-}
-
-// The height of a feature in metres, or nullopt when it has none usable.
-std::optional<double> height_of(const json& properties, const FootprintOptions& o) {
-  const std::string& key = !o.height_attribute.empty() ? o.height_attribute : !o.storeys_attribute.empty() ? o.storeys_attribute : "height";
-  if (!properties.is_object()) return std::nullopt;
-  const auto it = properties.find(key);
-  if (it == properties.end()) return std::nullopt;
-  double v = std::numeric_limits<double>::quiet_NaN();
-  if (it->is_number()) {
-    v = it->get<double>();
-  } else if (it->is_string()) {
-    const std::string& s = it->get_ref<const std::string&>();
-    std::istringstream in(s);
-    in.imbue(std::locale::classic());
-    if (!(in >> v) || !(in >> std::ws).eof()) return std::nullopt;
-  }
-  if (!o.storeys_attribute.empty() && o.height_attribute.empty()) v *= o.storey_height;
-  if (!std::isfinite(v) || !(v > 0.0)) return std::nullopt;
-  return v;
 }
 
 // The CRS the coordinates are in, by FootprintOptions::crs, the file's "crs" member or RFC 7946.
@@ -180,7 +156,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
           continue;
         }
       }
-      std::optional<double> height = height_of(f.value("properties", json()), options);
+      std::optional<double> height = attribute_height(f.value("properties", json()), options, "height");
       if (!height) {
         if (!options.missing_height) {
           ++report.skipped_no_height;
