@@ -150,7 +150,7 @@ oracle::OracleOptions for_one_scene(oracle::OracleOptions options, unsigned thre
   return options;
 }
 
-void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>& claims, const std::string& stage,
+void search_scenes(int scenes, unsigned threads, const Shard& shard, const std::vector<ClaimCheck*>& claims, const std::string& stage,
                    const std::function<void(int index, std::vector<ClaimCheck>& partial)>& search) {
   if (scenes <= 0) return;
   std::vector<ClaimCheck> blank;
@@ -159,14 +159,16 @@ void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>&
     b.holds = true;
     b.frames_checked = b.violations = 0;
     b.counterexample_replay.clear(), b.counterexample_detail.clear();
+    b.counterexample_scene = -1;
     blank.push_back(std::move(b));
   }
   std::vector<std::vector<ClaimCheck>> partials(static_cast<std::size_t>(scenes), blank);
   std::vector<std::exception_ptr> failures(static_cast<std::size_t>(scenes));
-  Progress progress(stage, static_cast<std::size_t>(scenes), "scenes");
+  Progress progress(stage, shard.share(static_cast<std::size_t>(scenes)), "scenes");
   std::atomic<int> next{0};
   auto work = [&] {
     for (int i = next++; i < scenes; i = next++) {
+      if (!shard.owns(static_cast<std::size_t>(i))) continue;
       try {
         search(i, partials[static_cast<std::size_t>(i)]);
       } catch (...) {
@@ -182,8 +184,9 @@ void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>&
   for (std::thread& t : pool) t.join();
   for (const std::exception_ptr& e : failures)  // the lowest scene's failure, as one thread would raise it
     if (e) std::rethrow_exception(e);
-  for (const std::vector<ClaimCheck>& partial : partials)
+  for (std::size_t scene = 0; scene < partials.size(); ++scene)
     for (std::size_t k = 0; k < claims.size(); ++k) {
+      const std::vector<ClaimCheck>& partial = partials[scene];
       ClaimCheck& c = *claims[k];
       const ClaimCheck& p = partial[k];
       c.frames_checked += p.frames_checked;
@@ -192,6 +195,7 @@ void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>&
         c.holds = false;
         c.counterexample_replay = p.counterexample_replay;
         c.counterexample_detail = p.counterexample_detail;
+        c.counterexample_scene = static_cast<int>(scene);
       }
     }
 }
@@ -211,7 +215,7 @@ std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& op
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
   MethodOptions method_options;
-  search_scenes(options.scenes, options.threads, {&published, &corrected}, "claims search: the shadow elevation rule",
+  search_scenes(options.scenes, options.threads, options.shard, {&published, &corrected}, "claims search: the shadow elevation rule",
                 [&options, &method_options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
     ClaimCheck& published = partial[0];
     ClaimCheck& corrected = partial[1];
@@ -261,7 +265,7 @@ std::vector<ClaimCheck> check_image_space_pitch_roll(const ClaimSearchOptions& o
                            "oh_is");
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
-  search_scenes(options.scenes, options.threads, {&tilted, &level}, "claims search: OH(IS) with pitch and roll",
+  search_scenes(options.scenes, options.threads, options.shard, {&tilted, &level}, "claims search: OH(IS) with pitch and roll",
                 [&options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
     ClaimCheck& tilted = partial[0];
     ClaimCheck& level = partial[1];

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/shard.hpp"
 #include "oracle/oracle.hpp"
 #include "oracle/sampling.hpp"
 #include "reports/scene_source.hpp"
@@ -23,6 +24,7 @@ struct ClaimSearchOptions {
   int cameras_per_scene = 16;  // rooftop cameras per scene; 4x as many near-roof ones, half as many fly-through frames
   oracle::SamplingOptions sampling;
   unsigned threads = 0;        // scenes searched at once; 0: every core. The ledger is the same for any number.
+  Shard shard;                 // search only the scenes whose index is this shard's (core/shard.hpp)
 };
 
 struct ClaimCheck {
@@ -36,6 +38,9 @@ struct ClaimCheck {
   std::string counterexample_replay;  // empty when the claim held
   std::string counterexample_detail;
   double search_seconds = 0.0;
+  // The scene (search_scenes' index) the counterexample came from, -1 for none: shards of a
+  // search keep the counterexample of the lowest one (merge_claims).
+  int counterexample_scene = -1;
 };
 
 nlohmann::json to_json(const ClaimCheck& claim);
@@ -48,7 +53,8 @@ nlohmann::json to_json(const ClaimCheck& claim);
 // threads are 1 within a search on more than one thread (`threaded` says which).
 // The oracle's options within one scene of search_scenes: its own threads 1 when scenes run at once.
 oracle::OracleOptions for_one_scene(oracle::OracleOptions options, unsigned threads, int scenes);
-void search_scenes(int scenes, unsigned threads, const std::vector<ClaimCheck*>& claims, const std::string& stage,
+// Only the scenes `shard` owns are searched (the others add nothing).
+void search_scenes(int scenes, unsigned threads, const Shard& shard, const std::vector<ClaimCheck*>& claims, const std::string& stage,
                    const std::function<void(int index, std::vector<ClaimCheck>& partial)>& search);
 
 // A seeded Manhattan city for a claim search: sizes drawn (in this order) from the ranges by the

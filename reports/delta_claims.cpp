@@ -60,7 +60,7 @@ std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& opt
   guarded.method = "delta_h_guarded";
   oracle::OracleOptions oracle_options;
   oracle_options.sampling = options.sampling;
-  search_scenes(options.scenes, options.threads, {&published, &guarded}, "claims search: ΔH from a lateral move",
+  search_scenes(options.scenes, options.threads, options.shard, {&published, &guarded}, "claims search: ΔH from a lateral move",
                 [&options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
     ClaimCheck& published = partial[0];
     ClaimCheck& guarded = partial[1];

@@ -89,9 +89,9 @@ MethodOptions with_knob(MethodOptions o, const std::string& knob, double value) 
   return o;
 }
 
-nlohmann::json knob_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
-                          const MethodOptions& options, const std::vector<KnobSweep>& sweeps, const PathVerification& main) {
-  nlohmann::json rows = nlohmann::json::array();
+std::vector<KnobRow> knob_sweep_rows(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
+                                     const MethodOptions& options, const std::vector<KnobSweep>& sweeps, const PathVerification& main) {
+  std::vector<KnobRow> rows;
   // What the main run's oracle saw, by frame number.
   std::vector<const std::vector<ObjectId>*> seen_at(path.frames.size(), nullptr);
   for (std::size_t k = 0; k < main.checked_frames.size(); ++k)
@@ -108,35 +108,79 @@ nlohmann::json knob_sweep(const Scene& scene, const CameraPath& path, const std:
         if (std::find(methods.begin(), methods.end(), name) == methods.end()) continue;
         if (!method_unavailable_reason(name, scene).empty()) continue;
         const auto method = make_method(name, scene, with_knob(options, sweep.knob, value));
-        std::vector<double> ms, pvs, checked_pvs, witnessed;
-        std::uint64_t misses = 0;
+        KnobRow row;
+        row.knob = sweep.knob;
+        row.value = value;
+        row.method = name;
+        row.run_setting = value == knob_value(options, sweep.knob);
         for (std::size_t f = 0; f < path.frames.size(); ++f, progress.advance()) {
           const Camera& camera = path.frames[f];
           if (!method->unsupported_camera(camera).empty()) continue;
           method->set_frame(f, double(f) * frame_seconds);
           const CullResult r = method->cull(camera);
-          ms.push_back(r.stats.cull_ms);
-          pvs.push_back(double(r.pvs.size()));
+          row.cull_ms.push_back(r.stats.cull_ms);
+          row.pvs.push_back(double(r.pvs.size()));
           if (!seen_at[f]) continue;
-          checked_pvs.push_back(double(r.pvs.size()));
-          witnessed.push_back(double(seen_at[f]->size()));
-          for (ObjectId id : *seen_at[f]) misses += std::binary_search(r.pvs.begin(), r.pvs.end(), id) ? 0 : 1;
+          row.checked_frames.push_back(f);
+          row.checked_pvs.push_back(double(r.pvs.size()));
+          row.witnessed.push_back(double(seen_at[f]->size()));
+          for (ObjectId id : *seen_at[f]) row.misses += std::binary_search(r.pvs.begin(), r.pvs.end(), id) ? 0 : 1;
         }
-        const double w = mean(witnessed);
-        rows.push_back({{"knob", sweep.knob},
-                        {"value", value},
-                        {"method", name},
-                        {"run_setting", value == knob_value(options, sweep.knob)},
-                        {"frames", ms.size()},
-                        {"cull_ms_median", median(ms)},
-                        {"cull_ms_p95", percentile(ms, 95)},
-                        {"pvs_mean", mean(pvs)},
-                        {"pvs_mean_checked_frames", mean(checked_pvs)},
-                        {"witnessed_mean", w},
-                        {"overestimation", w > 0 ? mean(checked_pvs) / w : 0.0},
-                        {"misses", misses}});
+        rows.push_back(std::move(row));
       }
   return rows;
+}
+
+nlohmann::json knob_sweep_json(const std::vector<KnobRow>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const KnobRow& row : rows) {
+    const double w = mean(row.witnessed);
+    out.push_back({{"knob", row.knob},
+                   {"value", row.value},
+                   {"method", row.method},
+                   {"run_setting", row.run_setting},
+                   {"frames", row.cull_ms.size()},
+                   {"cull_ms_median", median(row.cull_ms)},
+                   {"cull_ms_p95", percentile(row.cull_ms, 95)},
+                   {"pvs_mean", mean(row.pvs)},
+                   {"pvs_mean_checked_frames", mean(row.checked_pvs)},
+                   {"witnessed_mean", w},
+                   {"overestimation", w > 0 ? mean(row.checked_pvs) / w : 0.0},
+                   {"misses", row.misses}});
+  }
+  return out;
+}
+
+nlohmann::json knob_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
+                          const MethodOptions& options, const std::vector<KnobSweep>& sweeps, const PathVerification& main) {
+  return knob_sweep_json(knob_sweep_rows(scene, path, methods, options, sweeps, main));
+}
+
+nlohmann::json knob_row_to_raw_json(const KnobRow& r) {
+  return {{"knob", r.knob},       {"method", r.method},       {"value", r.value},         {"run_setting", r.run_setting},
+          {"cull_ms", r.cull_ms}, {"pvs", r.pvs},             {"checked_frames", r.checked_frames},
+          {"checked_pvs", r.checked_pvs}, {"witnessed", r.witnessed}, {"misses", r.misses}};
+}
+
+KnobRow knob_row_from_raw_json(const nlohmann::json& j, const std::string& what) {
+  KnobRow r;
+  try {
+    r.knob = j.at("knob").get<std::string>();
+    r.method = j.at("method").get<std::string>();
+    r.value = j.at("value").get<double>();
+    r.run_setting = j.at("run_setting").get<bool>();
+    r.cull_ms = j.at("cull_ms").get<std::vector<double>>();
+    r.pvs = j.at("pvs").get<std::vector<double>>();
+    r.checked_frames = j.at("checked_frames").get<std::vector<std::size_t>>();
+    r.checked_pvs = j.at("checked_pvs").get<std::vector<double>>();
+    r.witnessed = j.at("witnessed").get<std::vector<double>>();
+    r.misses = j.at("misses").get<std::uint64_t>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(what, "", std::string("is not a knob-sweep row: ") + e.what());
+  }
+  if (r.checked_pvs.size() != r.checked_frames.size() || r.witnessed.size() != r.checked_frames.size())
+    throw InputError(what, "checked_frames", "has not one PVS and one witnessed size per checked frame");
+  return r;
 }
 
 std::string knob_sweep_table(const nlohmann::json& rows) {

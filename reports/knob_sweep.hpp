@@ -38,6 +38,23 @@ MethodOptions with_knob(MethodOptions options, const std::string& knob, double v
 // verify --<knob> <value>`, not yet a verdict. `main` must be the verification of the same path.
 nlohmann::json knob_sweep(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
                           const MethodOptions& options, const std::vector<KnobSweep>& sweeps, const PathVerification& main);
+
+// One row before it is summed up: every frame's time and PVS, and the PVS at each frame `main`
+// checked. A shard's `main` checked its share of the frames only; merge_knob_rows joins them.
+struct KnobRow {
+  std::string knob, method;
+  double value = 0.0;
+  bool run_setting = false;
+  std::vector<double> cull_ms, pvs;  // every frame the method answered
+  std::vector<std::size_t> checked_frames;
+  std::vector<double> checked_pvs, witnessed;  // at those frames
+  std::uint64_t misses = 0;
+};
+std::vector<KnobRow> knob_sweep_rows(const Scene& scene, const CameraPath& path, const std::vector<std::string>& methods,
+                                     const MethodOptions& options, const std::vector<KnobSweep>& sweeps, const PathVerification& main);
+nlohmann::json knob_sweep_json(const std::vector<KnobRow>& rows);
+nlohmann::json knob_row_to_raw_json(const KnobRow& row);
+KnobRow knob_row_from_raw_json(const nlohmann::json& j, const std::string& what);
 // The rows as a printed table.
 std::string knob_sweep_table(const nlohmann::json& rows);
 

@@ -83,10 +83,9 @@ std::uint64_t conservative_violations(const PathVerification& v) {
   return n;
 }
 
-nlohmann::json build_report(const ReportInputs& in) {
+nlohmann::json report_header(const ReportInputs& in) {
   using nlohmann::json;
   const Scene& scene = *in.scene;
-  const PathVerification& v = *in.verification;
   json report;
   report["schema_version"] = kReportSchemaVersion;
   report["tool"] = {{"name", "cullcheck"}, {"version", "0.1.0"}};
@@ -131,6 +130,14 @@ nlohmann::json build_report(const ReportInputs& in) {
                                      {"origin", {c.origin.x, c.origin.y}}};
     if (c.declared_origin) report["path"]["coordinates"]["declared_origin"] = {c.declared_origin->x, c.declared_origin->y};
   }
+  return report;
+}
+
+nlohmann::json build_report(const ReportInputs& in) { return report_results(in, report_header(in)); }
+
+nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
+  using nlohmann::json;
+  const PathVerification& v = *in.verification;
   const OracleSummary& o = v.oracle;
   json density;
   oracle::to_json(density, o.density);
@@ -287,8 +294,24 @@ nlohmann::json build_report(const ReportInputs& in) {
   json claims = json::array();
   for (const ClaimCheck& c : in.claims) claims.push_back(to_json(c));
   report["claims"] = claims;
-  report["gate"] = gate_verdict(v, in.source.replay_flags(), in.thresholds).to_json();
+  report["gate"] = gate_verdict(v, report["scene"]["replay_flags"].get<std::string>(), in.thresholds).to_json();
   return report;
+}
+
+nlohmann::json without_timings(const nlohmann::json& j) {
+  if (j.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const nlohmann::json& x : j) out.push_back(without_timings(x));
+    return out;
+  }
+  if (!j.is_object()) return j;
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [key, value] : j.items()) {
+    const bool timed = key.find("_ms") != std::string::npos || key.rfind("ms_", 0) == 0 || key.find("seconds") != std::string::npos ||
+                       key.find("per_second") != std::string::npos || key == "machine";
+    if (!timed) out[key] = without_timings(value);
+  }
+  return out;
 }
 
 std::string summary_table(const PathVerification& v) {

@@ -41,10 +41,20 @@ struct ReportInputs {
 };
 
 nlohmann::json build_report(const ReportInputs& in);
+// build_report in two parts: what the scene and path are (schema_version, tool, machine, scene,
+// path: needs in.scene and in.path), and what the run found, added to such a header (needs
+// in.verification, in.claims, in.method_options, the map's choice; the scene's replay flags are
+// the header's). `cullcheck merge` adds a merged run's results to a shard's header.
+nlohmann::json report_header(const ReportInputs& in);
+nlohmann::json report_results(const ReportInputs& in, nlohmann::json header);
 // Speed-ups measured in the run, as ratios of the same statistic of two methods over the same
 // frames, next to the thesis's Table 3.2 culling-time speed-ups where it has one: OH(IS) vs
 // OH(OS), OH(IS) vs ΔH, OH(OS) vs ΔH (for both ΔH variants), frustum vs OH(OS).
 nlohmann::json speedups_json(const PathVerification& v);
+// A report.json without what is timed (keys holding "_ms", "seconds" or "per_second", keys
+// starting "ms_", and "machine"): what the same inputs give byte for byte, on any machine, any
+// number of threads, sharded or not.
+nlohmann::json without_timings(const nlohmann::json& report);
 // The per-method table printed after a run.
 std::string summary_table(const PathVerification& v);
 // Total violations of methods that claim to be conservative (the CI gate's number).

@@ -61,7 +61,8 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
   oracle_options.sampling = options.sampling;
   // The kept counterexamples first (generators/kept_cases.hpp): small hand-built scenes a seeded
   // street city never builds (a planter 1 m from the eye), each with the viewpoint that refutes.
-  for (const std::string& name : generators::kept_case_names()) {
+  // They are shard 0's (a counterexample found here is the search's first: its scene is -1).
+  for (const std::string& name : options.shard.index == 0 ? generators::kept_case_names() : std::vector<std::string>{}) {
     const generators::KeptRegionQuery q = generators::kept_region_query(name);
     SceneSource source;
     source.generator = "kept";
@@ -88,7 +89,7 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
   const double radii[] = {0.5, 2.0, 8.0};
   std::vector<ClaimCheck*> claims;
   for (Variant& v : variants) claims.push_back(&v.claim);
-  search_scenes(options.scenes, options.threads, claims, "claims search: region shrinking",
+  search_scenes(options.scenes, options.threads, options.shard, claims, "claims search: region shrinking",
                 [&options, &variants, &radii, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](
                     int index, std::vector<ClaimCheck>& partial) {
     const SceneSource source = search_scene(options.seed, index);

@@ -44,3 +44,12 @@ add_test(NAME knob_sweep_test COMMAND knob_sweep_test)
 add_executable(claims_search_test ${CMAKE_CURRENT_LIST_DIR}/tests/claims_search_test.cpp)
 target_link_libraries(claims_search_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
 add_test(NAME claims_search_test COMMAND claims_search_test)
+
+# Shards of a run joined again (--shard K/N, cullcheck merge): four merged shards equal one run.
+add_executable(shard_merge_test ${CMAKE_CURRENT_LIST_DIR}/tests/shard_merge_test.cpp)
+target_link_libraries(shard_merge_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
+add_test(NAME shard_merge_test COMMAND shard_merge_test)
+add_executable(report_same ${CMAKE_CURRENT_LIST_DIR}/tests/report_same.cpp)
+target_link_libraries(report_same PRIVATE cullcheck_reports cullcheck_warnings)
+add_test(NAME shard_cli_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/tests/shard_cli_test.sh $<TARGET_FILE:cullcheck>
+  $<TARGET_FILE:report_same>)

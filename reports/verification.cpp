@@ -88,13 +88,6 @@ void drop_unconfirmed(const oracle::Oracle& truth, oracle::OracleAnswer& answer,
   });
 }
 
-// Violations of one method over a set of checked frames: all counted, the first few kept.
-struct ViolationTally {
-  std::uint64_t count = 0;
-  std::size_t frames = 0;  // frames with at least one violation
-  std::vector<Violation> kept;
-};
-
 // Keeps this checked frame as the run's snapshot when it is the frame asked for, or (none asked
 // for) when it is worse than the one kept. The copies are made only then.
 void keep_snapshot(MethodRun& run, std::size_t index, const Camera& camera, const std::vector<ObjectId>& pvs,
@@ -122,6 +115,14 @@ void keep_snapshot(MethodRun& run, std::size_t index, const Camera& camera, cons
 }
 
 }  // namespace
+
+void settle_violations(MethodRun& run) {
+  run.claims_conservative = run.claims_every_camera || run.frames_claimed > 0;
+  const ViolationTally& tally = run.claims_conservative ? run.claimed_frames : run.every_frame;
+  run.violation_count = tally.count;
+  run.frames_with_violations = tally.frames;
+  run.violations = tally.kept;
+}
 
 bool worse_frame(const FrameSnapshot& a, const FrameSnapshot& b) {
   if (a.missed.size() != b.missed.size()) return a.missed.size() > b.missed.size();
@@ -174,15 +175,13 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
                              const VerificationOptions& options) {
   PathVerification out;
   const std::size_t n = engines.size();
-  std::vector<ViolationTally> all_frames(n), claimed_frames(n);
-  std::vector<std::size_t> frames_claimed(n, 0);  // checked frames the claim covers
   out.oracle.density = options.oracle.sampling;
   out.oracle.oracle_stride = std::max<std::size_t>(1, options.oracle_stride);
   std::vector<std::size_t> builtin;  // runs an outside subject's PVS is compared with
   for (std::size_t m = 0; m < n; ++m) {
     MethodRun run;
     run.method = engines[m].method->name();
-    run.claims_conservative = engines[m].method->claims_conservative();
+    run.claims_conservative = run.claims_every_camera = engines[m].method->claims_conservative();
     run.outside = engines[m].outside;
     run.pixel_error_budget = engines[m].method->pixel_error_budget();
     if (!run.outside) builtin.push_back(m);
@@ -283,7 +282,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         out.runs[m].compared_with_reference = true;
         out.runs[m].frames_differing_from_reference += results[m]->pvs != results[reference]->pvs ? 1 : 0;
       }
-    if (frame % out.oracle.oracle_stride != 0) continue;
+    if (frame % out.oracle.oracle_stride != 0 || !options.shard.owns(frame / out.oracle.oracle_stride)) continue;
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
     oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
     ++out.oracle.frames_checked;
@@ -314,7 +313,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.checked_pvs_size.push_back(static_cast<double>(pvs.size()));
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
       const bool claimed = engines[m].method->claims_conservative_for(camera);
-      frames_claimed[m] += claimed ? 1 : 0;
+      run.frames_claimed += claimed ? 1 : 0;
       std::vector<ObjectId> missed = missing_from(answer.visible, pvs);
       std::optional<oracle::PixelComparison> pixel;
       if (full) {
@@ -356,7 +355,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.checked_frames.push_back(index);
       keep_snapshot(run, index, camera, pvs, answer, pixel ? &*pixel : nullptr, missed, options.snapshot_frame);
       if (missed.empty()) continue;
-      for (ViolationTally* tally : {&all_frames[m], claimed ? &claimed_frames[m] : nullptr}) {
+      for (ViolationTally* tally : {&run.every_frame, claimed ? &run.claimed_frames : nullptr}) {
         if (tally == nullptr) continue;
         tally->count += missed.size();
         ++tally->frames;
@@ -371,6 +370,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       RegionRun& run = out.regions[m];
       run.checked_pvs_size.push_back(static_cast<double>(region_pvs[m].size()));
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
+      run.checked_frames.push_back(index);
       std::vector<ObjectId> missed = missing_from(answer.visible, region_pvs[m]);
       drop_unconfirmed(truth, answer, camera, nullptr, missed, run.witness_recheck);
       if (missed.empty()) continue;
@@ -384,14 +384,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     }
     out.oracle.witness_recheck += answer.witness_recheck;
   }
-  for (std::size_t m = 0; m < n; ++m) {
-    MethodRun& run = out.runs[m];
-    run.claims_conservative = run.claims_conservative || frames_claimed[m] > 0;
-    ViolationTally& tally = run.claims_conservative ? claimed_frames[m] : all_frames[m];
-    run.violation_count = tally.count;
-    run.frames_with_violations = tally.frames;
-    run.violations = std::move(tally.kept);
-  }
+  for (MethodRun& run : out.runs) settle_violations(run);
   if (options.measure_bare_embree && !first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth.rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
   return out;
 }

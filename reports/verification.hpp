@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/camera_path.hpp"
+#include "core/shard.hpp"
 #include "engine/method.hpp"
 #include "oracle/oracle.hpp"
 #include "reports/scene_source.hpp"
@@ -52,6 +53,10 @@ struct VerificationOptions {
   // The frame (its number along the original path) each run keeps as its FrameSnapshot, when it
   // is checked; without it, each run keeps its worst checked frame.
   std::optional<std::size_t> snapshot_frame;
+  // A shard checks only its share of the checked frames (the n-th checked frame is shard n mod
+  // N's); every shard runs every method along the whole path, since an incremental method's
+  // answer depends on the frames before. merge_verifications joins the shards.
+  Shard shard;
 };
 
 // One checked frame of one method, kept for the report page's map: the camera, the PVS, what the
@@ -98,6 +103,13 @@ struct Abort {
   std::string message;
 };
 
+// Violations of one method over a set of checked frames: all counted, the first few kept.
+struct ViolationTally {
+  std::uint64_t count = 0;
+  std::size_t frames = 0;  // frames with at least one violation
+  std::vector<Violation> kept;
+};
+
 struct MethodRun {
   std::string method;
   bool claims_conservative = false;
@@ -135,7 +147,16 @@ struct MethodRun {
   std::uint64_t most_misdrawn = 0;      // the worst frame's misdrawn pixels
   std::size_t frames_over_budget = 0;   // approximate methods: frames above pixel_error_budget
   std::vector<Violation> over_budget;   // the first max_replays of them (building = the worst object)
+  // Before settle_violations: whether the method claims conservativeness for every camera, the
+  // checked frames its claim covers, and the violations of every checked frame and of those.
+  bool claims_every_camera = false;
+  std::size_t frames_claimed = 0;
+  ViolationTally every_frame, claimed_frames;
 };
+
+// Sets a run's claims_conservative and violations from its tallies (the gate's rule, in
+// verification.cpp): at the end of verify_path, and again after shards are merged.
+void settle_violations(MethodRun& run);
 
 struct RegionRun {
   std::string method;
@@ -147,6 +168,7 @@ struct RegionRun {
   std::vector<double> point_pvs_size;    // every frame: the reference method's PVS at that camera
   std::vector<double> checked_pvs_size;  // frames checked by the oracle
   std::vector<double> witnessed_size;
+  std::vector<std::size_t> checked_frames;  // the number of each of them along the path
   std::uint64_t violation_count = 0;
   std::size_t frames_with_violations = 0;
   std::vector<Violation> violations;

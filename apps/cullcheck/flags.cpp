@@ -126,6 +126,21 @@ std::string PathFlags::source_name(const std::string& camera_json) const {
   return "the " + kind + " path";
 }
 
+void add_shard_flag(CLI::App& app, Shard& shard, const std::string& what) {
+  app.add_option_function<std::string>("--shard", [&shard](const std::string& text) { shard = parse_shard(text); }, what)
+      ->type_name("K/N")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              parse_shard(text);
+              return std::string();
+            } catch (const InputError& e) {
+              return e.problem();
+            }
+          },
+          "K/N"));
+}
+
 nlohmann::json parse_json_flag(const std::string& text, const std::string& field) {
   try {
     return nlohmann::json::parse(text);

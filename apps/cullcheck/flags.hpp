@@ -13,6 +13,7 @@
 
 #include "core/camera_path.hpp"
 #include "core/coordinates.hpp"
+#include "core/shard.hpp"
 #include "engine/method.hpp"
 #include "oracle/sampling.hpp"
 #include "reports/scene_source.hpp"
@@ -63,6 +64,9 @@ struct PathFlags {
   // The name of where the cameras came from, for coordinates_line.
   std::string source_name(const std::string& camera_json) const;
 };
+
+// --shard K/N (core/shard.hpp), checked as it is parsed; `what` says what the shard does.
+void add_shard_flag(CLI::App& app, Shard& shard, const std::string& what);
 
 // Parses a JSON flag value, raising InputError naming the flag.
 nlohmann::json parse_json_flag(const std::string& text, const std::string& field);

@@ -1,6 +1,7 @@
 // cullcheck report: the main job. Every method and the oracle along a path, the claims ledger,
 // optional sections (thesis Table 4.1, view cells, VbAoI, scaling, the ε sweep), report.json.
 #include <algorithm>
+#include <map>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -21,6 +22,7 @@
 #include "reports/knob_sweep.hpp"
 #include "reports/region_sweep.hpp"
 #include "reports/report.hpp"
+#include "reports/report_parts.hpp"
 #include "reports/scaling.hpp"
 #include "reports/shrinking_claims.hpp"
 #include "reports/table_4_1.hpp"
@@ -39,6 +41,7 @@ Runner add_report(CLI::App& app) {
     RegionFlags regions;
     std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
     std::optional<std::size_t> map_frame;
+    Shard shard;
     std::size_t oracle_stride = 5;  // the oracle costs ~0.3 s a frame on the default city
     std::vector<double> region_sweep_radii;
     std::vector<std::string> knob_sweeps;
@@ -88,6 +91,10 @@ Runner add_report(CLI::App& app) {
                   "delta_radius, delta_height, delta_turn): into report.json's \"knob_sweep\" and the page's Pareto plot");
   sub->add_option("--method", f->methods, "Comma-separated methods, or 'all'")->capture_default_str();
   sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
+  add_shard_flag(*sub, f->shard,
+                 "Run shard K of N (e.g. 0/4): the oracle's n-th checked frame, each claim search's n-th scene and the n-th "
+                 "section asked for are shard n mod N's; every shard runs the methods along the whole path. The file it "
+                 "writes is the report of its share; `cullcheck merge` joins the N files into the report of the whole run");
   sub->add_option("--html", f->html,
                   "Also write the report page: one self-contained HTML file (summary, claims ledger, plots, map) that opens "
                   "offline; `cullcheck html report.json` writes it later");
@@ -177,111 +184,122 @@ Runner add_report(CLI::App& app) {
     options.region_on_tiling = f->regions.placement == "tiling";
     std::cout << "scene: " << scene.provenance.generator << " seed " << scene.provenance.seed << ", "
               << scene.buildings.size() << " buildings; path: " << path.kind << ", " << path.frames.size() << " frames\n";
-    const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags(), parse_methods(f->methods),
-                                                  f->tuning.options, options, /*require_any=*/false);
+    // The sections this run asks for, in report order: the j-th is shard j mod N's.
+    std::vector<std::string> asked;
+    const std::map<std::string, bool> wanted = {
+        {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41},      {"view_cells", f->view_cells},
+        {"vbaoi", vbaoi_scene.has_value()},                {"scaling", !f->scaling_grids.empty()}, {"fuzz", !f->fuzz.subject.empty()},
+        {"soak", f->soak.budget > 0},                      {"benchmarks", !f->benchmark_json.empty()}};
+    for (const std::string& name : report_section_names())
+      if (wanted.at(name)) asked.push_back(name);
+    auto mine = [&](const std::string& name) {
+      const auto at = std::find(asked.begin(), asked.end(), name);
+      return at != asked.end() && f->shard.owns(static_cast<std::size_t>(at - asked.begin()));
+    };
+    options.shard = f->shard;
+    f->claim_options.shard = f->shard;
+    ReportParts parts;
+    parts.verification = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags(), parse_methods(f->methods),
+                                            f->tuning.options, options, /*require_any=*/false);
+    const PathVerification& v = parts.verification;
     f->claim_options.sampling = f->sampling.sampling;
     ReportInputs in;
-    in.method_options = f->tuning.options;
     in.scene = &scene;
     in.source = f->scene.source;
     in.import = imported;
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
     in.coordinates = coordinates;
-    in.verification = &v;
-    in.map_method = f->map_method;
-    in.map_frame = f->map_frame;
     in.path_replay_flags = f->path.replay_flags();
-    in.claims = subject_claims(v);
-    for (ClaimCheck& c : check_shadow_elevation_rule(f->claim_options)) in.claims.push_back(std::move(c));
-    for (ClaimCheck& c : check_image_space_pitch_roll(f->claim_options)) in.claims.push_back(std::move(c));
-    for (ClaimCheck& c : check_delta_horizon_claims(f->claim_options)) in.claims.push_back(std::move(c));
-    for (ClaimCheck& c : check_shrinking_claims(f->claim_options)) in.claims.push_back(std::move(c));
-    nlohmann::json document = build_report(in);
-    if (!f->region_sweep_radii.empty()) {
-      document["region_sweep"] =
+    parts.header = report_header(in);
+    parts.method_options = f->tuning.options;
+    parts.map_method = f->map_method;
+    parts.map_frame = f->map_frame;
+    for (auto search : {check_shadow_elevation_rule, check_image_space_pitch_roll, check_delta_horizon_claims, check_shrinking_claims})
+      for (ClaimCheck& c : search(f->claim_options)) parts.searched_claims.push_back(std::move(c));
+    if (mine("region_sweep")) {
+      parts.sections["region_sweep"] =
           region_radius_sweep(scene, path, options.region_methods.empty() ? region_method_names() : options.region_methods,
-                                  f->region_sweep_radii, f->regions.turn, options.region_on_tiling, f->tuning.options);
-      std::cout << region_sweep_table(document["region_sweep"]);
+                              f->region_sweep_radii, f->regions.turn, options.region_on_tiling, f->tuning.options);
+      std::cout << region_sweep_table(parts.sections["region_sweep"]);
     }
-    if (!sweeps.empty()) {
-      document["knob_sweep"] = knob_sweep(scene, path, parse_methods(f->methods), f->tuning.options, sweeps, v);
-      std::cout << knob_sweep_table(document["knob_sweep"]);
+    if (!sweeps.empty()) {  // every shard: its checks are at its own checked frames
+      parts.knob_rows = knob_sweep_rows(scene, path, parse_methods(f->methods), f->tuning.options, sweeps, v);
+      std::cout << knob_sweep_table(knob_sweep_json(*parts.knob_rows));
     }
-    std::size_t section_violations = 0;
-    if (f->table_41) {
+    if (mine("table_4_1")) {
       Table41Options t;
       t.region_methods = options.region_methods;
       t.radius = f->regions.radius;
       t.oracle_stride = f->oracle_stride;
       t.oracle.sampling = f->sampling.sampling;
-      document["table_4_1"] = table_4_1(t, f->tuning.options);
-      std::cout << table_4_1_text(document["table_4_1"]);
-      for (const auto& r : document["table_4_1"]["rows"])
-        if (r.value("claims_conservative", true)) section_violations += r["violations"].get<std::size_t>();
+      parts.sections["table_4_1"] = table_4_1(t, f->tuning.options);
+      std::cout << table_4_1_text(parts.sections["table_4_1"]);
     }
-    if (f->view_cells) {
+    if (mine("view_cells")) {
       f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;
       f->view_cell_options.oracle.sampling = f->sampling.sampling;
-      document["view_cells"] = view_cell_report(scene, f->scene.source, f->view_cell_options, f->tuning.options);
-      std::cout << view_cell_table(document["view_cells"]);
-      for (const auto& r : document["view_cells"]["runs"])
-        if (r["claims_conservative"].get<bool>()) section_violations += r["violations"].get<std::size_t>();
+      parts.sections["view_cells"] = view_cell_report(scene, f->scene.source, f->view_cell_options, f->tuning.options);
+      std::cout << view_cell_table(parts.sections["view_cells"]);
     }
-    if (vbaoi_scene) {
-      document["vbaoi"] = vbaoi_report(*vbaoi_scene, f->vbaoi_city, f->vbaoi.options);
-      std::cout << vbaoi_table(document["vbaoi"]);
-      section_violations += vbaoi_gate_violations(document["vbaoi"]);
-      for (ClaimCheck& c : vbaoi_claims(document["vbaoi"])) {
-        document["claims"].push_back(to_json(c));
-        in.claims.push_back(std::move(c));
-      }
+    if (mine("vbaoi")) {
+      parts.sections["vbaoi"] = vbaoi_report(*vbaoi_scene, f->vbaoi_city, f->vbaoi.options);
+      std::cout << vbaoi_table(parts.sections["vbaoi"]);
+      parts.section_claims["vbaoi"] = vbaoi_claims(parts.sections["vbaoi"]);
     }
-    if (!f->scaling_grids.empty()) {
+    if (mine("scaling")) {
       ScalingOptions scaling;
       scaling.grids = f->scaling_grids;
       scaling.frames = f->scaling_frames;
-      document["scaling"] = run_scaling(scaling);
-      std::cout << scaling_table(document["scaling"]);
+      parts.sections["scaling"] = run_scaling(scaling);
+      std::cout << scaling_table(parts.sections["scaling"]);
     }
-    if (!f->fuzz.subject.empty()) {
+    if (mine("fuzz")) {
       f->fuzz.sampling = f->sampling.sampling;
       const FuzzResult fuzzed = fuzz_subject(f->fuzz);
-      document["fuzz"] = fuzz_json(fuzzed);
+      parts.sections["fuzz"] = fuzz_json(fuzzed);
       std::string replay;
       if (fuzzed.failure) {
         replay = write_counterexample(fuzzed, f->fuzz, f->fuzz_out);
-        document["fuzz"]["counterexample"] = f->fuzz_out;
+        parts.sections["fuzz"]["counterexample"] = f->fuzz_out;
       }
       std::cout << fuzz_summary(fuzzed, f->fuzz_out);
-      const ClaimCheck claim = fuzz_claim(fuzzed, replay);
-      document["claims"].push_back(to_json(claim));
-      in.claims.push_back(claim);
+      parts.section_claims["fuzz"] = {fuzz_claim(fuzzed, replay)};
     }
-    if (f->soak.budget > 0) {
+    if (mine("soak")) {
       f->soak.methods = conservative_method_names();
       f->soak.sampling = f->sampling.sampling;
       f->soak.pixels = false;
       const FuzzResult soaked = fuzz_subject(f->soak);
-      document["soak"] = fuzz_json(soaked);
+      parts.sections["soak"] = fuzz_json(soaked);
       std::string replay;
       if (soaked.failure) {
         replay = write_counterexample(soaked, f->soak, f->soak_out);
-        document["soak"]["counterexample"] = f->soak_out;
+        parts.sections["soak"]["counterexample"] = f->soak_out;
       }
       std::cout << fuzz_summary(soaked, f->soak_out);
-      for (ClaimCheck& c : fuzz_claims(soaked, replay)) {
-        document["claims"].push_back(to_json(c));
-        in.claims.push_back(std::move(c));
-      }
+      parts.section_claims["soak"] = fuzz_claims(soaked, replay);
     }
-    // The gate in the document says what the exit code says: sections' violations count too.
-    const GateVerdict verdict = gate_verdict(v, f->scene.source.replay_flags(), {}, section_violations);
-    document["gate"] = verdict.to_json();
-    if (!f->benchmark_json.empty())
-      document["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
+    if (mine("benchmarks"))
+      parts.sections["benchmarks"] = parse_json_flag(read_text_file(f->benchmark_json), "benchmark-json");
+    // What the shards of one run share: merge refuses shards run with other flags.
+    nlohmann::json density;
+    oracle::to_json(density, options.oracle.sampling);
+    parts.identity = {{"methods", f->methods},
+                      {"oracle_stride", options.oracle_stride},
+                      {"density", density},
+                      {"pixels", options.pixels},
+                      {"regions", {f->regions.methods, f->regions.radius, f->regions.turn, f->regions.placement}},
+                      {"claims", {f->claim_options.seed, f->claim_options.scenes, f->claim_options.cameras_per_scene}},
+                      {"sections", asked},
+                      {"knob_sweeps", f->knob_sweeps},
+                      {"region_sweep", f->region_sweep_radii},
+                      {"max_replays", options.max_replays},
+                      {"subjects", f->subjects.identity()}};
+    const AssembledReport assembled = assemble_report(parts);
+    const nlohmann::json document = f->shard.whole() ? assembled.document : shard_document(parts, f->shard);
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({verdict}));
+    if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({assembled.verdict}));
     if (!f->html.empty()) {
       if (const std::string problem = write_report_page(document, &scene, f->html, 900); !problem.empty())
         std::cerr << "cullcheck: the page has no map: " << problem << "\n";
@@ -289,13 +307,19 @@ Runner add_report(CLI::App& app) {
     }
     if (document.contains("map_problem")) std::cerr << "cullcheck: " << document["map_problem"].get<std::string>() << "\n";
     std::cout << coordinates_line(coordinates, f->path.source_name("")) << "\n" << summary_table(v);
-    for (const ClaimCheck& c : in.claims) {
+    for (const ClaimCheck& c : assembled.claims) {
       std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
                 << c.violations << " violations)\n";
       if (!c.holds) std::cout << "  counterexample: " << c.counterexample_replay << "\n";
     }
+    if (!f->shard.whole()) {
+      std::string ran;
+      for (const auto& [name, section] : parts.sections.items()) ran += (ran.empty() ? "" : ", ") + name;
+      std::cout << "shard " << f->shard.text() << ": " << v.oracle.frames_checked << " of the path's checked frames, sections: "
+                << (ran.empty() ? "none" : ran) << "; join the shards with `cullcheck merge`\n";
+    }
     std::cout << "wrote " << f->output << "\n";
-    return verdict.exit_code();
+    return assembled.verdict.exit_code();
   };
 }
 

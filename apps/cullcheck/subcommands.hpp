@@ -21,5 +21,6 @@ Runner add_report(CLI::App& app);
 Runner add_gate(CLI::App& app);
 Runner add_fuzz(CLI::App& app);
 Runner add_html(CLI::App& app);
+Runner add_merge(CLI::App& app);
 
 }  // namespace cullcheck::cli

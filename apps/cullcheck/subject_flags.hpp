@@ -26,6 +26,10 @@ struct SubjectFlags {
   // `inline_visible`: also --visible/--claims/--pixel-budget (gate only).
   void add(CLI::App& app, bool inline_visible);
   bool any() const { return !subjects.empty() || !pvs_files.empty() || !visible.empty(); }
+  // The flags that change what the subjects answer (shards of one run must share them).
+  nlohmann::json identity() const {
+    return {{"subjects", subjects}, {"pvs_files", pvs_files}, {"visible", visible}, {"claims", claims}, {"pixel_budget", pixel_budget}};
+  }
 
   // Appends a method per subject to `methods`. `path_flags` rebuild the path (empty when the run
   // is one camera); a program that fails its handshake sets `aborted` and is not added.

@@ -26,7 +26,7 @@ TEST(ClaimSearch, AnyNumberOfThreadsWritesTheLedgerOfOne) {
   for (unsigned threads : {1u, 2u, 3u, 8u}) {
     ClaimCheck c;
     c.id = "synthetic";
-    search_scenes(7, threads, {&c}, "test", synthetic);
+    search_scenes(7, threads, Shard{}, {&c}, "test", synthetic);
     EXPECT_EQ(c.frames_checked, 28u) << threads;  // 1 + 2 + ... + 7
     EXPECT_EQ(c.violations, 4u) << threads;
     EXPECT_FALSE(c.holds);
@@ -39,7 +39,7 @@ TEST(ClaimSearch, TheLowestFailingScenesErrorIsRaised) {
   EXPECT_THROW(
       {
         try {
-          search_scenes(6, 3, {&c}, "test", [](int index, std::vector<ClaimCheck>&) {
+          search_scenes(6, 3, Shard{}, {&c}, "test", [](int index, std::vector<ClaimCheck>&) {
             if (index >= 2) throw std::runtime_error("scene " + std::to_string(index));
           });
         } catch (const std::runtime_error& e) {

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Sharded runs end to end: `cullcheck report --shard K/4` four times and `cullcheck merge` write
+# the report of one unsharded run (timings aside: report_same), with sections, the knob sweep
+# and claim searches split between the shards; the same for `verify --shard K/2 -o`; the merged
+# exit code is the run's; bad shard flags and incomplete shard sets are refused with exit 2.
+# Usage: shard_cli_test.sh /path/to/cullcheck /path/to/report_same
+set -u
+cc="$1"
+same="$2"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+cd "$work" || exit 1
+
+run=(--path-params '{"frames":30}' --oracle-stride 3 --region-sweep 0.5,1 --claim-scenes 2
+  --knob-sweep horizon_bins=1024,4096 --vbaoi --vbaoi-params '{"blocks_x":4,"blocks_y":4}' --vbaoi-clients 5 --soak-budget 8)
+"$cc" -q report "${run[@]}" -o one.json >one.out 2>&1
+one_exit=$?
+for k in 0 1 2 3; do
+  "$cc" -q report "${run[@]}" --shard "$k/4" -o "shard$k.json" >"shard$k.out" 2>&1 || true
+  grep -q "^shard $k/4: " "shard$k.out" || fail "report --shard $k/4 did not say what it ran"
+done
+"$cc" merge shard2.json shard0.json shard3.json shard1.json -o merged.json --html merged.html >merge.out 2>&1
+merge_exit=$?
+[ "$merge_exit" -eq "$one_exit" ] || fail "merge exited $merge_exit, the unsharded run $one_exit"
+"$same" one.json merged.json || fail "4 merged report shards differ from one run"
+grep -q '"sections_run"' merged.json && fail "the merged report still holds shard data"
+grep -q '<svg' merged.html || fail "merge --html wrote no page"
+# The work was split: each shard checked 2 or 3 of the 10 checked frames and ran its own sections.
+for k in 0 1 2 3; do
+  checked=$(sed -n "s|^shard $k/4: \([0-9]*\) of the path's checked frames.*|\1|p" "shard$k.out")
+  case "$checked" in 2|3) ;; *) fail "shard $k/4 checked $checked frames, not its 2 or 3 of 10" ;; esac
+done
+grep -q "sections: region_sweep" shard0.out || fail "the first section is not shard 0's"
+grep -q "sections: vbaoi" shard1.out || fail "the second section is not shard 1's"
+grep -q "sections: soak" shard2.out || fail "the third section is not shard 2's"
+# A shard's file is a report of its share: it differs from the whole run's.
+"$same" one.json shard0.json >/dev/null && fail "a shard's report equals the whole run's"
+
+# verify: the frames split in two.
+vrun=(--generator manhattan --seed 3 --params '{"blocks_x":4,"blocks_y":4}' --path-params '{"frames":12}' --method all --region-method shrink_minkowski)
+"$cc" -q verify "${vrun[@]}" -o verify.json >/dev/null 2>&1
+for k in 0 1; do "$cc" -q verify "${vrun[@]}" --shard "$k/2" -o "v$k.json" >/dev/null 2>&1; done
+"$cc" merge v1.json v0.json -o verify-merged.json >/dev/null 2>&1
+"$same" verify.json verify-merged.json || fail "2 merged verify shards differ from one run"
+
+# Bad input: exit 2 and a line that says what is wrong.
+expect_refusal() {  # what text command...
+  local what=$1 text=$2
+  shift 2
+  "$@" >out 2>err
+  local got=$?
+  [ "$got" -eq 2 ] || fail "$what: exit $got, expected 2"
+  grep -q -- "$text" err || { fail "$what: stderr lacks '$text'"; head -3 err; }
+}
+expect_refusal "shard 4 of 4" "K must be below N" "$cc" report --shard 4/4
+expect_refusal "shard 1/x" "is not K/N" "$cc" verify --shard 1/x
+expect_refusal "verify shard without a file" "needs --output" "$cc" verify "${vrun[@]}" --shard 0/2
+expect_refusal "three of four shards" "every shard of the run is needed" "$cc" merge shard0.json shard1.json shard3.json
+expect_refusal "a shard twice" "is given twice" "$cc" merge shard0.json shard1.json shard1.json shard3.json
+"$cc" -q report "${run[@]}" --claim-seed 2 --shard 2/4 -o other2.json >/dev/null 2>&1
+expect_refusal "shards run with other flags" "the shards were run with other flags" "$cc" merge shard0.json shard1.json other2.json shard3.json
+"$cc" -q report "${run[@]}" --seed 2 --shard 2/4 -o city2.json >/dev/null 2>&1
+expect_refusal "shards of another city" "not a shard of the same run" "$cc" merge shard0.json shard1.json city2.json shard3.json
+expect_refusal "a plain report" "not a shard file" "$cc" merge one.json
+cp merged.json kept.json
+"$cc" merge shard0.json shard1.json -o merged.json >/dev/null 2>&1
+cmp -s merged.json kept.json || fail "a refused merge touched the report already written"
+
+if [ "$failures" -gt 0 ]; then echo "$failures failures"; exit 1; fi
+echo "shard_cli_test: all passed"
