@@ -7,6 +7,7 @@
 #include "reports/shard_merge.hpp"
 #include "reports/subject_claims.hpp"
 #include "reports/vbaoi.hpp"
+#include "reports/view_cells.hpp"
 #include "reports/verification_json.hpp"
 
 namespace cullcheck {
@@ -14,8 +15,7 @@ namespace cullcheck {
 using nlohmann::json;
 
 const std::vector<std::string>& report_section_names() {
-  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "view_cells", "vbaoi",
-                                                 "scaling",      "fuzz",      "soak",       "benchmarks"};
+  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
   return names;
 }
 
@@ -43,6 +43,7 @@ AssembledReport assemble_report(const ReportParts& parts) {
   out.document = report_results(in, parts.header);
   out.claims = in.claims;
   if (parts.knob_rows) out.document["knob_sweep"] = knob_sweep_json(*parts.knob_rows);
+  if (parts.view_cell_rows) out.document["view_cells"] = view_cell_section(*parts.view_cell_rows);
   for (const std::string& name : report_section_names()) {
     if (parts.sections.contains(name)) out.document[name] = parts.sections[name];
     if (const auto found = parts.section_claims.find(name); found != parts.section_claims.end())
@@ -113,6 +114,7 @@ json shard_document(const ReportParts& parts, const Shard& shard) {
                        {"map_frame", parts.map_frame ? json(*parts.map_frame) : json(nullptr)},
                        {"searched_claims", claims},
                        {"knob_rows", knob_rows},
+                       {"view_cell_rows", parts.view_cell_rows ? *parts.view_cell_rows : json(nullptr)},
                        {"sections_run", sections},
                        {"section_claims", section_claims}};
   return document;
@@ -166,6 +168,7 @@ ReportParts merge_shard_documents(const std::vector<json>& documents, const std:
     std::vector<PathVerification> verifications;
     std::vector<std::vector<ClaimCheck>> claims;
     std::vector<std::vector<KnobRow>> knobs;
+    std::vector<json> cells;
     for (std::size_t k = 0; k < by_index.size(); ++k) {
       const json& s = (*by_index[k])["shard"];
       verifications.push_back(verification_from_json(s.at("verification"), name_of[k] + ": shard.verification"));
@@ -175,6 +178,7 @@ ReportParts merge_shard_documents(const std::vector<json>& documents, const std:
         knobs.emplace_back();
         for (const json& r : s.at("knob_rows")) knobs.back().push_back(knob_row_from_raw_json(r, name_of[k] + ": shard.knob_rows"));
       }
+      if (!s.at("view_cell_rows").is_null()) cells.push_back(s["view_cell_rows"]);
       for (const json& name : s.at("sections_run")) {
         const std::string section = name.get<std::string>();
         if (parts.sections.contains(section))
@@ -190,6 +194,10 @@ ReportParts merge_shard_documents(const std::vector<json>& documents, const std:
     const std::size_t max_replays = parts.identity.value("max_replays", std::size_t{5});
     parts.verification = merge_verifications(verifications, max_replays);
     parts.searched_claims = merge_claims(claims);
+    if (!cells.empty()) {
+      if (cells.size() != by_index.size()) throw InputError("merge", "view_cell_rows", "some shards computed view cells and some did not");
+      parts.view_cell_rows = merge_view_cell_rows(cells);
+    }
     if (!knobs.empty()) {
       if (knobs.size() != by_index.size()) throw InputError("merge", "knob_rows", "some shards swept knobs and some did not");
       parts.knob_rows = merge_knob_rows(knobs);

@@ -4,9 +4,9 @@
 // the raw parts of N shard files (shard_merge.hpp) and assembles them as one run would.
 //
 // The work of a run is split so: the oracle's checked frames and each claim search's scenes by
-// number (shard n mod N), the knob sweep's checks with the frames they are held at, and each
-// other section (region_sweep, table_4_1, view_cells, vbaoi, scaling, fuzz, soak, benchmarks) as
-// one unit: the j-th section the run asks for is shard j mod N's. Every shard runs the methods
+// number (shard n mod N), the knob sweep's checks with the frames they are held at, the view
+// cells by number, and each other section (region_sweep, table_4_1, vbaoi, scaling, fuzz, soak,
+// benchmarks) as one unit: the j-th section the run asks for is shard j mod N's. Every shard runs the methods
 // along the whole path: an incremental method's answer depends on the frames before.
 #pragma once
 
@@ -37,6 +37,7 @@ struct ReportParts {
   std::optional<std::size_t> map_frame;
   std::vector<ClaimCheck> searched_claims;  // the claim searches, in order
   std::optional<std::vector<KnobRow>> knob_rows;
+  std::optional<nlohmann::json> view_cell_rows;  // view_cells.hpp: this run's (shard's) cells
   nlohmann::json sections = nlohmann::json::object();  // by name: the sections this run (shard) ran
   std::map<std::string, std::vector<ClaimCheck>> section_claims;
   // What every shard of one run shares (the flags that change results): merge refuses shards

@@ -2,6 +2,10 @@
 #include "core/progress.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <map>
+#include <thread>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -57,101 +61,205 @@ std::string cell_replay_command(const SceneSource& source, const std::string& me
          round_trip_text(eye_height) + " --from " + camera_arg(from);
 }
 
-nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
-                                const MethodOptions& method_options) {
+namespace {
+
+// One cell of one run: the union computed without and with carried decisions, and the oracle's
+// check when the cell is one of those held to it.
+nlohmann::json cell_row(RegionCullingMethod& method, ViewCellPvs& cells_pvs, const ViewCell& cell, std::size_t k, std::size_t id,
+                        const ViewCellOptions& options, CellSampling sampling, const SceneSource& source,
+                        const std::vector<std::pair<Camera, oracle::OracleAnswer>>* answers) {
+  const ViewCellResult plain = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/false);
+  ViewCellResult used = plain;
+  bool differ = false;
+  if (method.carries_known()) {
+    used = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/true);
+    differ = used.pvs != plain.pvs;
+  }
+  nlohmann::json row = {{"k", k},
+                        {"plain_ms", plain.stats.cull_ms},
+                        {"plain_tests", plain.stats.buildings_tested},
+                        {"carried_ms", used.stats.cull_ms},
+                        {"carried_tests", used.stats.buildings_tested},
+                        {"skipped", used.stats.items_skipped},
+                        {"pvs", used.pvs.size()},
+                        {"samples", used.samples},
+                        {"differ", differ},
+                        {"viewpoints", 0},
+                        {"violations", 0},
+                        {"first", nlohmann::json::array()}};
+  if (!answers) return row;
+  for (const auto& [v, seen] : *answers) {
+    row["viewpoints"] = row["viewpoints"].get<std::size_t>() + 1;
+    for (ObjectId id_seen : missing_from(seen.visible, used.pvs)) {
+      row["violations"] = row["violations"].get<std::size_t>() + 1;
+      if (row["first"].size() < 5)
+        row["first"].push_back({{"cell", id},
+                                {"building", id_seen},
+                                {"witness", seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id_seen)) : seen.model},
+                                {"replay", cell_replay_command(source, method.name(), static_cast<std::uint32_t>(id), options.epsilon,
+                                                               sampling, options.eye_height, v)}});
+    }
+  }
+  return row;
+}
+
+unsigned cell_threads(unsigned threads, std::size_t cells) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads == 0 ? cores : threads, cells)));
+}
+
+}  // namespace
+
+nlohmann::json view_cell_rows(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
+                              const MethodOptions& method_options) {
   const std::vector<NavigableRegion> regions = generators::navigable_regions(scene);
-  const auto cells = &regions;
   std::vector<std::size_t> chosen;
-  for (std::size_t c = 0; c < cells->size(); c += std::max<std::size_t>(1, options.cell_stride)) chosen.push_back(c);
+  for (std::size_t c = 0; c < regions.size(); c += std::max<std::size_t>(1, options.cell_stride)) chosen.push_back(c);
+  std::vector<std::size_t> mine;  // indices into `chosen` this shard computes
+  for (std::size_t k = 0; k < chosen.size(); ++k)
+    if (options.shard.owns(k)) mine.push_back(k);
   const std::vector<std::size_t> checked = spread(chosen.size(), options.oracle_cells);
 
-  // The oracle's answers, once per viewpoint of each checked cell, shared by every run.
+  // The oracle's answers, once per viewpoint of each checked cell this shard computes, shared by every run.
   const oracle::Oracle truth(scene);
   const generators::OpenSpace open(scene);
-  std::vector<std::vector<std::pair<Camera, oracle::OracleAnswer>>> answers;
+  std::map<std::size_t, std::vector<std::pair<Camera, oracle::OracleAnswer>>> answers;
   double oracle_seconds = 0.0;
   for (std::size_t k : checked) {
-    answers.emplace_back();
-    for (const Camera& v : cell_viewpoints({(*cells)[chosen[k]].ring, options.eye_height})) {
+    if (!options.shard.owns(k)) continue;
+    auto& list = answers[k];
+    for (const Camera& v : cell_viewpoints({regions[chosen[k]].ring, options.eye_height})) {
       if (open.inside_building(v.position)) continue;
-      answers.back().emplace_back(v, truth.visible_set(v, options.oracle));
-      oracle_seconds += answers.back().back().second.elapsed_seconds;
+      list.emplace_back(v, truth.visible_set(v, options.oracle));
+      oracle_seconds += list.back().second.elapsed_seconds;
     }
   }
 
-  nlohmann::json report = {{"epsilon", options.epsilon},          {"eye_height", options.eye_height},
-                           {"buildings", scene.buildings.size()}, {"cells", cells->size()},
-                           {"cells_computed", chosen.size()},     {"cells_checked_by_oracle", checked.size()},
-                           {"oracle_seconds", oracle_seconds},    {"runs", nlohmann::json::array()}};
+  nlohmann::json out = {{"epsilon", options.epsilon},          {"eye_height", options.eye_height},
+                        {"buildings", scene.buildings.size()}, {"cells", regions.size()},
+                        {"cells_computed", chosen.size()},     {"cells_checked_by_oracle", checked.size()},
+                        {"oracle_seconds", oracle_seconds},    {"runs", nlohmann::json::array()}};
+  const unsigned threads = cell_threads(options.threads, mine.size());
   for (const std::string& name : options.methods)
     for (CellSampling sampling : options.samplings) {
-      auto method = make_region_method(name, scene, method_options);
-      ViewCellPvs cells_pvs(*method, scene);
-      std::vector<double> carried_ms, plain_ms, pvs, samples;
-      std::uint64_t carried_tests = 0, plain_tests = 0, skipped = 0;
-      std::size_t unions_differ = 0, violations = 0, viewpoints = 0;
-      nlohmann::json first = nlohmann::json::array();
-      std::size_t next_checked = 0;
-      Progress progress("view cells: " + name + " (" + std::string(cell_sampling_name(sampling)) + ")", chosen.size(), "cells");
-      for (std::size_t k = 0; k < chosen.size(); ++k, progress.advance()) {
-        const ViewCell cell{(*cells)[chosen[k]].ring, options.eye_height};
-        const ViewCellResult plain = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/false);
-        plain_ms.push_back(plain.stats.cull_ms);
-        plain_tests += plain.stats.buildings_tested;
-        ViewCellResult used = plain;
-        if (method->carries_known()) {
-          used = cells_pvs.compute(cell, options.epsilon, sampling, /*carry=*/true);
-          unions_differ += used.pvs != plain.pvs ? 1 : 0;
-        }
-        carried_ms.push_back(used.stats.cull_ms);
-        carried_tests += used.stats.buildings_tested;
-        skipped += used.stats.items_skipped;
-        pvs.push_back(static_cast<double>(used.pvs.size()));
-        samples.push_back(static_cast<double>(used.samples));
-        if (next_checked < checked.size() && checked[next_checked] == k) {
-          for (const auto& [v, seen] : answers[next_checked]) {
-            ++viewpoints;
-            for (ObjectId id : missing_from(seen.visible, used.pvs)) {
-              ++violations;
-              if (first.size() < 5)
-                first.push_back({{"cell", chosen[k]},
-                                 {"building", id},
-                                 {"witness", seen.sampling ? oracle::describe(seen.sampling->witnesses.at(id)) : seen.model},
-                                 {"replay", cell_replay_command(source, name, static_cast<std::uint32_t>(chosen[k]),
-                                                                options.epsilon, sampling, options.eye_height, v)}});
-            }
+      std::vector<nlohmann::json> rows(mine.size());
+      std::vector<std::exception_ptr> failures(mine.size());
+      Progress progress("view cells: " + name + " (" + std::string(cell_sampling_name(sampling)) + ")", mine.size(), "cells");
+      std::atomic<std::size_t> next{0};
+      auto work = [&] {  // each thread its own method: region methods keep per-query state
+        auto method = make_region_method(name, scene, method_options);
+        ViewCellPvs cells_pvs(*method, scene);
+        for (std::size_t i = next++; i < mine.size(); i = next++) {
+          const std::size_t k = mine[i];
+          try {
+            const auto found = answers.find(k);
+            rows[i] = cell_row(*method, cells_pvs, {regions[chosen[k]].ring, options.eye_height}, k, chosen[k], options, sampling,
+                               source, found == answers.end() ? nullptr : &found->second);
+          } catch (...) {
+            failures[i] = std::current_exception();
           }
-          ++next_checked;
+          progress.advance();
         }
-      }
-      auto sum = [](const std::vector<double>& v) {
-        double s = 0.0;
-        for (double x : v) s += x;
-        return s;
       };
-      report["runs"].push_back({{"method", name},
-                                {"sampling", cell_sampling_name(sampling)},
-                                {"claims_conservative", method->claims_conservative()},
-                                {"carries", method->carries_known()},
-                                {"samples_mean", mean(samples)},
-                                {"ms_per_cell_median", median(carried_ms)},
-                                {"ms_per_cell_p95", percentile(carried_ms, 95.0)},
-                                {"ms_per_cell_mean", mean(carried_ms)},
-                                {"total_seconds", sum(carried_ms) / 1000.0},
-                                {"uncarried_ms_per_cell_median", median(plain_ms)},
-                                {"uncarried_total_seconds", sum(plain_ms) / 1000.0},
-                                {"carry_speedup", sum(carried_ms) > 0.0 ? sum(plain_ms) / sum(carried_ms) : 1.0},
-                                {"buildings_tested_per_cell", static_cast<double>(carried_tests) / std::max<double>(1, chosen.size())},
-                                {"uncarried_buildings_tested_per_cell", static_cast<double>(plain_tests) / std::max<double>(1, chosen.size())},
-                                {"accepted_untested_per_cell", static_cast<double>(skipped) / std::max<double>(1, chosen.size())},
-                                {"cells_where_carrying_changed_the_pvs", unions_differ},
-                                {"pvs_mean", mean(pvs)},
-                                {"pvs_max", pvs.empty() ? 0.0 : *std::max_element(pvs.begin(), pvs.end())},
-                                {"oracle_viewpoints", viewpoints},
-                                {"violations", violations},
-                                {"first_violations", first}});
+      std::vector<std::thread> pool;
+      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+      work();
+      for (std::thread& t : pool) t.join();
+      for (const std::exception_ptr& e : failures)  // the lowest cell's failure, as one thread would raise it
+        if (e) std::rethrow_exception(e);
+      const auto probe = make_region_method(name, scene, method_options);
+      out["runs"].push_back({{"method", name},
+                             {"sampling", cell_sampling_name(sampling)},
+                             {"claims_conservative", probe->claims_conservative()},
+                             {"carries", probe->carries_known()},
+                             {"rows", rows}});
     }
+  return out;
+}
+
+nlohmann::json merge_view_cell_rows(const std::vector<nlohmann::json>& shards) {
+  if (shards.empty()) throw InputError("view_cells", "", "no shards");
+  nlohmann::json out = shards[0];
+  out["oracle_seconds"] = 0.0;
+  for (std::size_t s = 0; s < shards.size(); ++s) {
+    const nlohmann::json& shard = shards[s];
+    for (const char* key : {"epsilon", "eye_height", "buildings", "cells", "cells_computed", "cells_checked_by_oracle"})
+      if (shard.at(key) != out.at(key))
+        throw InputError("shard " + std::to_string(s), std::string("view_cells.") + key, "differs from shard 0's");
+    if (shard.at("runs").size() != out.at("runs").size())
+      throw InputError("shard " + std::to_string(s), "view_cells.runs", "has other runs than shard 0");
+    out["oracle_seconds"] = out["oracle_seconds"].get<double>() + shard.at("oracle_seconds").get<double>();
+  }
+  for (std::size_t r = 0; r < out["runs"].size(); ++r) {
+    std::vector<nlohmann::json> rows;
+    for (const nlohmann::json& shard : shards)
+      for (const nlohmann::json& row : shard["runs"][r].at("rows")) rows.push_back(row);
+    std::stable_sort(rows.begin(), rows.end(),
+                     [](const nlohmann::json& a, const nlohmann::json& b) { return a.at("k").get<std::size_t>() < b.at("k").get<std::size_t>(); });
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (rows[i]["k"].get<std::size_t>() != i)
+        throw InputError("view_cells", "rows", "cell " + std::to_string(i) + " is missing or given twice among the shards");
+    out["runs"][r]["rows"] = rows;
+  }
+  return out;
+}
+
+nlohmann::json view_cell_section(const nlohmann::json& raw) {
+  nlohmann::json report = raw;
+  report["runs"] = nlohmann::json::array();
+  const double cells = std::max<double>(1, raw["cells_computed"].get<double>());
+  for (const nlohmann::json& run : raw["runs"]) {
+    std::vector<double> carried_ms, plain_ms, pvs, samples;
+    std::uint64_t carried_tests = 0, plain_tests = 0, skipped = 0;
+    std::size_t unions_differ = 0, violations = 0, viewpoints = 0;
+    nlohmann::json first = nlohmann::json::array();
+    for (const nlohmann::json& row : run["rows"]) {
+      plain_ms.push_back(row["plain_ms"].get<double>());
+      carried_ms.push_back(row["carried_ms"].get<double>());
+      plain_tests += row["plain_tests"].get<std::uint64_t>();
+      carried_tests += row["carried_tests"].get<std::uint64_t>();
+      skipped += row["skipped"].get<std::uint64_t>();
+      pvs.push_back(row["pvs"].get<double>());
+      samples.push_back(row["samples"].get<double>());
+      unions_differ += row["differ"].get<bool>() ? 1 : 0;
+      viewpoints += row["viewpoints"].get<std::size_t>();
+      violations += row["violations"].get<std::size_t>();
+      for (const nlohmann::json& v : row["first"])
+        if (first.size() < 5) first.push_back(v);
+    }
+    auto sum = [](const std::vector<double>& v) {
+      double s = 0.0;
+      for (double x : v) s += x;
+      return s;
+    };
+    report["runs"].push_back({{"method", run["method"]},
+                              {"sampling", run["sampling"]},
+                              {"claims_conservative", run["claims_conservative"]},
+                              {"carries", run["carries"]},
+                              {"samples_mean", mean(samples)},
+                              {"ms_per_cell_median", median(carried_ms)},
+                              {"ms_per_cell_p95", percentile(carried_ms, 95.0)},
+                              {"ms_per_cell_mean", mean(carried_ms)},
+                              {"total_seconds", sum(carried_ms) / 1000.0},
+                              {"uncarried_ms_per_cell_median", median(plain_ms)},
+                              {"uncarried_total_seconds", sum(plain_ms) / 1000.0},
+                              {"carry_speedup", sum(carried_ms) > 0.0 ? sum(plain_ms) / sum(carried_ms) : 1.0},
+                              {"buildings_tested_per_cell", static_cast<double>(carried_tests) / cells},
+                              {"uncarried_buildings_tested_per_cell", static_cast<double>(plain_tests) / cells},
+                              {"accepted_untested_per_cell", static_cast<double>(skipped) / cells},
+                              {"cells_where_carrying_changed_the_pvs", unions_differ},
+                              {"pvs_mean", mean(pvs)},
+                              {"pvs_max", pvs.empty() ? 0.0 : *std::max_element(pvs.begin(), pvs.end())},
+                              {"oracle_viewpoints", viewpoints},
+                              {"violations", violations},
+                              {"first_violations", first}});
+  }
   return report;
+}
+
+nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
+                                const MethodOptions& method_options) {
+  return view_cell_section(view_cell_rows(scene, source, options, method_options));
 }
 
 std::string view_cell_table(const nlohmann::json& report) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "core/shard.hpp"
 #include "engine/method.hpp"
 #include "engine/shrinking/view_cell.hpp"
 #include "oracle/oracle.hpp"
@@ -25,6 +26,10 @@ struct ViewCellOptions {
   std::size_t cell_stride = 1;    // every k-th cell (1 = all navigable regions)
   std::size_t oracle_cells = 8;   // cells held to the oracle, spread over the city
   oracle::OracleOptions oracle;
+  // Cells computed at once (0: every core), each thread with its own method; the report is the
+  // same for any number (cells are independent, their rows are folded in cell order).
+  unsigned threads = 0;
+  Shard shard;  // compute only the cells this shard owns (the n-th computed cell is shard n mod N's)
 };
 
 // The eyes a cell's PVS is checked from: corners, edge midpoints, a 3 x 3 interior grid, all
@@ -38,6 +43,12 @@ std::string cell_replay_command(const SceneSource& source, const std::string& me
 // {"epsilon", "eye_height", "cells", "cells_computed", "runs": [{method, sampling, carry, ...}]}.
 nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
                                 const MethodOptions& method_options);
+// The same in two steps: one row per computed cell and run (what a shard writes), then the
+// section from the rows. merge_view_cell_rows joins the rows of a run's shards.
+nlohmann::json view_cell_rows(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
+                              const MethodOptions& method_options);
+nlohmann::json view_cell_section(const nlohmann::json& rows);
+nlohmann::json merge_view_cell_rows(const std::vector<nlohmann::json>& shards);
 std::string view_cell_table(const nlohmann::json& report);
 
 }  // namespace cullcheck

@@ -134,6 +134,10 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--view-cell-oracle-cells", f->view_cell_options.oracle_cells, "Street cells held to the oracle")
       ->capture_default_str();
   sub->add_option("--view-cell-sampling", f->view_cell_sampling, "Comma-separated: boundary, tiled")->capture_default_str();
+  sub->add_option("--view-cell-threads", f->view_cell_options.threads,
+                  "View cells computed at once (0: every core); the section is the same for any number")
+      ->capture_default_str()
+      ->check(CLI::Range(0u, 256u));
   sub->add_flag("--vbaoi", f->vbaoi_section,
                    "Also VbAoI (thesis ch. 5) on its own city (--vbaoi-generator/-seed/-params; default a 41 x 41-block "
                    "Manhattan grid of 10,086 buildings): the navigable-region graph, simulations of 10, 100 and 1,000 "
@@ -187,7 +191,7 @@ Runner add_report(CLI::App& app) {
     // The sections this run asks for, in report order: the j-th is shard j mod N's.
     std::vector<std::string> asked;
     const std::map<std::string, bool> wanted = {
-        {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41},      {"view_cells", f->view_cells},
+        {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41},
         {"vbaoi", vbaoi_scene.has_value()},                {"scaling", !f->scaling_grids.empty()}, {"fuzz", !f->fuzz.subject.empty()},
         {"soak", f->soak.budget > 0},                      {"benchmarks", !f->benchmark_json.empty()}};
     for (const std::string& name : report_section_names())
@@ -236,11 +240,12 @@ Runner add_report(CLI::App& app) {
       parts.sections["table_4_1"] = table_4_1(t, f->tuning.options);
       std::cout << table_4_1_text(parts.sections["table_4_1"]);
     }
-    if (mine("view_cells")) {
+    if (f->view_cells) {  // every shard: its share of the cells
       f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;
       f->view_cell_options.oracle.sampling = f->sampling.sampling;
-      parts.sections["view_cells"] = view_cell_report(scene, f->scene.source, f->view_cell_options, f->tuning.options);
-      std::cout << view_cell_table(parts.sections["view_cells"]);
+      f->view_cell_options.shard = f->shard;
+      parts.view_cell_rows = view_cell_rows(scene, f->scene.source, f->view_cell_options, f->tuning.options);
+      std::cout << view_cell_table(view_cell_section(*parts.view_cell_rows));
     }
     if (mine("vbaoi")) {
       parts.sections["vbaoi"] = vbaoi_report(*vbaoi_scene, f->vbaoi_city, f->vbaoi.options);
@@ -292,6 +297,9 @@ Runner add_report(CLI::App& app) {
                       {"regions", {f->regions.methods, f->regions.radius, f->regions.turn, f->regions.placement}},
                       {"claims", {f->claim_options.seed, f->claim_options.scenes, f->claim_options.cameras_per_scene}},
                       {"sections", asked},
+                      {"view_cells", f->view_cells ? nlohmann::json{f->view_cell_options.epsilon, f->view_cell_options.cell_stride,
+                                                                     f->view_cell_options.oracle_cells, f->view_cell_sampling}
+                                                   : nlohmann::json(nullptr)},
                       {"knob_sweeps", f->knob_sweeps},
                       {"region_sweep", f->region_sweep_radii},
                       {"max_replays", options.max_replays},

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sharded runs end to end: `cullcheck report --shard K/4` four times and `cullcheck merge` write
-# the report of one unsharded run (timings aside: report_same), with sections, the knob sweep
-# and claim searches split between the shards; the same for `verify --shard K/2 -o`; the merged
+# the report of one unsharded run (timings aside: report_same), with sections, the knob sweep,
+# view cells and claim searches split between the shards; view cells on one and on two threads
+# give the same section; the same for `verify --shard K/2 -o`; the merged
 # exit code is the run's; bad shard flags and incomplete shard sets are refused with exit 2.
 # Usage: shard_cli_test.sh /path/to/cullcheck /path/to/report_same
 set -u
@@ -13,7 +14,9 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 cd "$work" || exit 1
 
-run=(--path-params '{"frames":30}' --oracle-stride 3 --region-sweep 0.5,1 --claim-scenes 2
+city=(--generator manhattan --params '{"blocks_x":6,"blocks_y":6}')
+run=("${city[@]}" --seed 3 --path-params '{"frames":30}' --oracle-stride 3
+  --view-cells --view-cell-sampling boundary --view-cell-stride 2 --view-cell-oracle-cells 3 --region-sweep 0.5,1 --claim-scenes 2
   --knob-sweep horizon_bins=1024,4096 --vbaoi --vbaoi-params '{"blocks_x":4,"blocks_y":4}' --vbaoi-clients 5 --soak-budget 8)
 "$cc" -q report "${run[@]}" -o one.json >one.out 2>&1
 one_exit=$?
@@ -35,6 +38,8 @@ done
 grep -q "sections: region_sweep" shard0.out || fail "the first section is not shard 0's"
 grep -q "sections: vbaoi" shard1.out || fail "the second section is not shard 1's"
 grep -q "sections: soak" shard2.out || fail "the third section is not shard 2's"
+"$cc" -q report "${run[@]}" --view-cell-threads 1 -o one-thread.json >/dev/null 2>&1
+"$same" one.json one-thread.json || fail "view cells on one thread differ from every core's"
 # A shard's file is a report of its share: it differs from the whole run's.
 "$same" one.json shard0.json >/dev/null && fail "a shard's report equals the whole run's"
 
@@ -61,7 +66,7 @@ expect_refusal "three of four shards" "every shard of the run is needed" "$cc" m
 expect_refusal "a shard twice" "is given twice" "$cc" merge shard0.json shard1.json shard1.json shard3.json
 "$cc" -q report "${run[@]}" --claim-seed 2 --shard 2/4 -o other2.json >/dev/null 2>&1
 expect_refusal "shards run with other flags" "the shards were run with other flags" "$cc" merge shard0.json shard1.json other2.json shard3.json
-"$cc" -q report "${run[@]}" --seed 2 --shard 2/4 -o city2.json >/dev/null 2>&1
+"$cc" -q report "${city[@]}" --seed 4 "${run[@]:6}" --shard 2/4 -o city2.json >/dev/null 2>&1
 expect_refusal "shards of another city" "not a shard of the same run" "$cc" merge shard0.json shard1.json city2.json shard3.json
 expect_refusal "a plain report" "not a shard file" "$cc" merge one.json
 cp merged.json kept.json
