@@ -181,25 +181,42 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
   }
   const auto gen = generators::rcgen::fuzz_case(generators::rcgen::fuzz_scene_spec(), result.ready.orthographic);
   bool failing = false;
-  Progress progress("fuzzing " + result.subject_name, options.budget, "cases");
+  Progress progress("fuzzing " + result.subject_name, options.shard.share(static_cast<std::size_t>(options.budget)), "cases");
+  std::int64_t drawn = 0;  // cases drawn so far (shrinking draws none)
+  const bool sharded = !options.shard.whole();
   auto property = [&] {
-    const generators::FuzzCase c = *gen;
+    const generators::FuzzCase c = *gen;  // drawn in every shard: the next case is the same in all
+    const std::int64_t index = failing ? -1 : drawn++;
     if (failing) ++result.shrink_runs;
-    else ++result.cases, ++result.kinds[c.kind], ++result.scenes[c.spec.generator], progress.advance();
+    else if (!options.shard.owns(static_cast<std::size_t>(index))) return;  // another shard's case
+    else ++result.kinds[c.kind], ++result.scenes[c.spec.generator], progress.advance();
+    if (!failing) result.cases = static_cast<int>(drawn);
     CaseOutcome outcome = run_case(c, options, work.path());
     if (!failing) {
+      nlohmann::json record = {{"case", index}, {"kind", c.kind}, {"scene", c.spec.generator},
+                               {"oracle_frames", outcome.verification.oracle.frames_checked},
+                               {"recheck", {outcome.verification.oracle.witness_recheck.checked, outcome.verification.oracle.witness_recheck.dropped}},
+                               {"methods", nlohmann::json::object()}};
       result.oracle_frames += outcome.verification.oracle.frames_checked;
       result.witness_recheck += outcome.verification.oracle.witness_recheck;
       for (const MethodRun& run : outcome.verification.runs) {
         result.checked_frames[run.method] += run.checked_pvs_size.size();
         result.skipped_frames[run.method] += run.frames_skipped;
         result.witness_recheck_by_method[run.method] += run.witness_recheck;
+        record["methods"][run.method] = {run.checked_pvs_size.size(), run.frames_skipped, run.witness_recheck.checked,
+                                         run.witness_recheck.dropped, true};
       }
-      for (const std::string& name : outcome.unavailable) result.skipped_frames[name] += c.path.frames.size();
+      for (const std::string& name : outcome.unavailable) {
+        result.skipped_frames[name] += c.path.frames.size();
+        nlohmann::json& m = record["methods"][name];
+        if (m.is_null()) m = {0, 0, 0, 0, false};
+        m[1] = m[1].get<std::uint64_t>() + c.path.frames.size();
+      }
+      if (sharded) result.per_case.push_back(std::move(record));
     }
     if (!outcome.failed) return;
     const bool first = !failing;
-    if (first) result.seconds_to_failure = seconds_since(start);
+    if (first) result.seconds_to_failure = seconds_since(start), result.first_failing_case = index;
     failing = true;
     // Shrinking accepts a smaller case only when it fails too, so the last failing case seen is
     // the minimal one RapidCheck reports.
@@ -246,6 +263,7 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
   const rc::detail::TestResult tested =
       rc::detail::checkProperty(rc::detail::toProperty(property), rc::detail::TestMetadata{}, params, listener);
   result.shrinks_accepted = listener.accepted_shrinks;
+  if (!result.failure) result.cases = static_cast<int>(drawn);
   if (tested.is<rc::detail::Error>()) throw std::runtime_error("RapidCheck: " + tested.get<rc::detail::Error>().description);
   result.seconds_total = seconds_since(start);
   return result;
@@ -416,6 +434,81 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
   }
   write_text_file_atomically(dir + "/case.json", doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   return replay_here;
+}
+
+}  // namespace cullcheck
+
+namespace cullcheck {
+
+nlohmann::json fuzz_shard_json(const FuzzResult& r, const FuzzOptions& options) {
+  nlohmann::json j = fuzz_json(r);
+  j["shard"] = {{"kind", "fuzz"},
+                {"index", options.shard.index},
+                {"count", options.shard.count},
+                {"identity", {{"subject", options.subject}, {"methods", options.methods}, {"budget", options.budget},
+                              {"seed", options.seed}, {"pixels", options.pixels}}},
+                {"first_failing_case", r.first_failing_case},
+                {"per_case", r.per_case}};
+  return j;
+}
+
+nlohmann::json merge_fuzz_shards(const std::vector<nlohmann::json>& documents, const std::vector<std::string>& names) {
+  using nlohmann::json;
+  std::vector<const json*> by_index(documents.size(), nullptr);
+  for (std::size_t k = 0; k < documents.size(); ++k) {
+    const json& s = documents[k].at("shard");
+    const std::size_t index = s.at("index"), count = s.at("count");
+    if (count != documents.size())
+      throw InputError(names[k], "shard.count", "is " + std::to_string(count) + ", but " + std::to_string(documents.size()) +
+                                                    " shard files were given: every shard of the run is needed, once");
+    if (index >= count || by_index[index]) throw InputError(names[k], "shard.index", "shard " + std::to_string(index) + " is given twice");
+    if (s.at("identity") != documents[0].at("shard").at("identity"))
+      throw InputError(names[k], "shard.identity", "differs from " + names[0] + "'s: the shards were run with other flags");
+    by_index[index] = &documents[k];
+  }
+  // The failure the unsharded run meets first: the lowest first failing case of any shard.
+  const json* winner = by_index[0];
+  std::int64_t first = -1;
+  for (const json* d : by_index) {
+    const std::int64_t f = (*d)["shard"].at("first_failing_case").get<std::int64_t>();
+    if (f >= 0 && (first < 0 || f < first)) first = f, winner = d;
+  }
+  json out = *winner;
+  out.erase("shard");
+  // The counts over the cases the unsharded run ran: every case up to that failure, or all.
+  std::map<std::string, int> kinds, scenes;
+  std::map<std::string, std::uint64_t> checked, skipped;
+  std::uint64_t oracle_frames = 0, recheck_checked = 0, recheck_dropped = 0, cases = 0;
+  json by_method = json::object();
+  for (const json* d : by_index) {
+    cases = std::max<std::uint64_t>(cases, (*d).at("cases").get<std::uint64_t>());
+    for (const json& record : (*d)["shard"].at("per_case")) {
+      if (first >= 0 && record.at("case").get<std::int64_t>() > first) continue;
+      ++kinds[record.at("kind").get<std::string>()];
+      ++scenes[record.at("scene").get<std::string>()];
+      oracle_frames += record.at("oracle_frames").get<std::uint64_t>();
+      recheck_checked += record.at("recheck")[0].get<std::uint64_t>();
+      recheck_dropped += record.at("recheck")[1].get<std::uint64_t>();
+      for (const auto& [method, m] : record.at("methods").items()) {
+        skipped[method] += m[1].get<std::uint64_t>();
+        if (!m[4].get<bool>()) continue;
+        checked[method] += m[0].get<std::uint64_t>();
+        json& b = by_method[method];
+        if (b.is_null()) b = {{"checked", 0}, {"dropped", 0}};
+        b["checked"] = b["checked"].get<std::uint64_t>() + m[2].get<std::uint64_t>();
+        b["dropped"] = b["dropped"].get<std::uint64_t>() + m[3].get<std::uint64_t>();
+      }
+    }
+  }
+  out["cases"] = first >= 0 ? static_cast<std::uint64_t>(first) + 1 : cases;
+  out["cases_by_path_kind"] = kinds;
+  out["cases_by_scene_generator"] = scenes;
+  out["oracle_frames"] = oracle_frames;
+  out["checked_frames_by_method"] = checked;
+  out["skipped_frames_by_method"] = skipped;
+  out["witness_recheck"] = {{"checked", recheck_checked}, {"dropped", recheck_dropped}};
+  if (!by_method.empty()) out["witness_recheck"]["by_method"] = by_method;
+  return out;
 }
 
 }  // namespace cullcheck

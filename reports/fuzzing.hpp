@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/shard.hpp"
 #include "generators/fuzz_cases.hpp"
 #include "oracle/sampling.hpp"
 #include "reports/claims.hpp"
@@ -38,6 +39,10 @@ struct FuzzOptions {
   oracle::SamplingOptions sampling;
   std::string work_dir;       // each case's scene files go here (a temporary folder when empty)
   bool pixels = true;         // hold every frame to the pixel oracle too
+  // Run only the cases this shard owns (the n-th case drawn is shard n mod N's; every shard
+  // draws every case, which is cheap, so each case is the one the unsharded run draws). A shard
+  // stops at its own first failure and shrinks it; merge_fuzz_shards keeps the lowest.
+  Shard shard;
 };
 
 struct FuzzFailure {
@@ -71,6 +76,11 @@ struct FuzzResult {
   oracle::WitnessRecheckCounts witness_recheck;
   std::map<std::string, oracle::WitnessRecheckCounts> witness_recheck_by_method;
   std::optional<FuzzFailure> failure;
+  // Sharded runs (FuzzOptions::shard): the number of the first failing case drawn (-1: none),
+  // and one record per case run before it (and it), for merge_fuzz_shards to count the cases
+  // the unsharded run would have run.
+  std::int64_t first_failing_case = -1;
+  nlohmann::json per_case = nlohmann::json::array();
 };
 
 // The point methods that claim conservativeness (the soak run's `--method conservative`).
@@ -87,6 +97,12 @@ FuzzResult fuzz_subject(const FuzzOptions& options);
 std::string write_counterexample(const FuzzResult& result, const FuzzOptions& options, const std::string& dir);
 
 nlohmann::json fuzz_json(const FuzzResult& result);
+// fuzz_json of a shard (FuzzOptions::shard), with its raw records under "shard".
+nlohmann::json fuzz_shard_json(const FuzzResult& result, const FuzzOptions& options);
+// The fuzz_json of the unsharded run from N shards' fuzz_shard_json (timings aside): the failure
+// (and its counterexample folder) of the shard whose first failing case comes first, the counts
+// over the cases up to it. Throws InputError when the files are not one run's shards.
+nlohmann::json merge_fuzz_shards(const std::vector<nlohmann::json>& documents, const std::vector<std::string>& names);
 // The lines `cullcheck fuzz` prints: cases by kind, and the shrunk failure.
 std::string fuzz_summary(const FuzzResult& result, const std::string& counterexample_dir);
 // The claims ledger's entry: the subject's declared claim, refuted by the fuzzer's counterexample

@@ -105,7 +105,8 @@ json shard_document(const ReportParts& parts, const Shard& shard) {
     knob_rows = json::array();
     for (const KnobRow& r : *parts.knob_rows) knob_rows.push_back(knob_row_to_raw_json(r));
   }
-  document["shard"] = {{"index", shard.index},
+  document["shard"] = {{"kind", "report"},
+                       {"index", shard.index},
                        {"count", shard.count},
                        {"identity", parts.identity},
                        {"verification", verification_to_json(parts.verification)},

@@ -52,4 +52,4 @@ add_test(NAME shard_merge_test COMMAND shard_merge_test)
 add_executable(report_same ${CMAKE_CURRENT_LIST_DIR}/tests/report_same.cpp)
 target_link_libraries(report_same PRIVATE cullcheck_reports cullcheck_warnings)
 add_test(NAME shard_cli_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/tests/shard_cli_test.sh $<TARGET_FILE:cullcheck>
-  $<TARGET_FILE:report_same>)
+  $<TARGET_FILE:report_same> ${PROJECT_BINARY_DIR}/examples/subjects)

@@ -10,6 +10,7 @@
 
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/subcommands.hpp"
+#include "core/errors.hpp"
 #include "core/scene_io.hpp"
 #include "reports/fuzzing.hpp"
 
@@ -44,14 +45,20 @@ Runner add_fuzz(CLI::App& app) {
   sub->add_option("--output,-o", f->output, "Also write the run's summary as JSON");
   sub->add_option("--work-dir", f->fuzz.work_dir, "Folder for each case's scene files (default: a temporary one)");
   sub->add_flag("--no-pixels", f->no_pixels, "Skip the pixel oracle for conservative subjects");
+  add_shard_flag(*sub, f->fuzz.shard,
+                 "Run shard K of N (e.g. 0/4) of the cases: the n-th case drawn is shard n mod N's; a shard stops at its own "
+                 "first failure. Needs --output; `cullcheck merge` joins the N files into the unsharded run's summary");
   f->sampling.add(*sub);
   return [f] {
     if (f->fuzz.subject.empty() && f->methods.empty()) throw std::invalid_argument("fuzz: give --subject or --method");
+    if (!f->fuzz.shard.whole() && f->output.empty()) throw InputError("flag", "shard", "needs --output: the file `cullcheck merge` joins");
     if (!f->methods.empty()) f->fuzz.methods = f->methods == "conservative" ? conservative_method_names() : parse_methods(f->methods);
     f->fuzz.sampling = f->sampling.sampling;
     f->fuzz.pixels = !f->no_pixels;
     const FuzzResult r = fuzz_subject(f->fuzz);
-    nlohmann::json doc = fuzz_json(r);
+    // Each shard writes its own folder: shards on one machine must not overwrite each other's.
+    if (!f->fuzz.shard.whole()) f->out += "-shard" + std::to_string(f->fuzz.shard.index);
+    nlohmann::json doc = f->fuzz.shard.whole() ? fuzz_json(r) : fuzz_shard_json(r, f->fuzz);
     int code = 0;
     if (r.failure) {
       write_counterexample(r, f->fuzz, f->out);

@@ -8,6 +8,7 @@
 #include "apps/cullcheck/subcommands.hpp"
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
+#include "reports/fuzzing.hpp"
 #include "reports/junit.hpp"
 #include "reports/report.hpp"
 #include "reports/report_parts.hpp"
@@ -21,7 +22,7 @@ Runner add_merge(CLI::App& app) {
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand(
-      "merge", "Join the N shard files of one run (written with --shard K/N) into the report of the whole run");
+      "merge", "Join the N shard files of one run (report, verify or fuzz, written with --shard K/N) into the report of the whole run");
   sub->add_option("shards", f->inputs, "Every shard file of the run, in any order")->required();
   sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
   sub->add_option("--html", f->html, "Also write the report page (its map's scene is rebuilt from the report's scene flags)");
@@ -29,6 +30,23 @@ Runner add_merge(CLI::App& app) {
   return [f] {
     std::vector<nlohmann::json> documents;
     for (const std::string& input : f->inputs) documents.push_back(parse_json_flag(read_text_file(input), input));
+    // Shards of `cullcheck fuzz`: the summary of the unsharded run.
+    std::size_t fuzz_shards = 0;
+    for (const nlohmann::json& d : documents)
+      fuzz_shards += d.is_object() && d.contains("shard") && d["shard"].is_object() && d["shard"].value("kind", "") == "fuzz" ? 1 : 0;
+    if (fuzz_shards > 0) {
+      if (fuzz_shards != documents.size())
+        throw InputError("merge", "shards", "fuzz shards and report shards cannot be merged together");
+      const nlohmann::json merged = merge_fuzz_shards(documents, f->inputs);
+      write_text_file_atomically(f->output, merged.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+      const bool failed = merged.contains("failure");
+      std::cout << "merged " << documents.size() << " fuzz shards: " << merged["cases"] << " cases, "
+                << (failed ? "failed: " + merged["failure"]["message"].get<std::string>() +
+                                 (merged.contains("counterexample") ? " (counterexample in " + merged["counterexample"].get<std::string>() + ")" : "")
+                           : std::string("passed"))
+                << "\nwrote " << f->output << "\n";
+      return failed ? kExitGateFailed : 0;
+    }
     const ReportParts parts = merge_shard_documents(documents, f->inputs);
     const AssembledReport assembled = assemble_report(parts);
     write_text_file_atomically(f->output, assembled.document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

@@ -4,10 +4,12 @@
 # view cells and claim searches split between the shards; view cells on one and on two threads
 # give the same section; the same for `verify --shard K/2 -o`; the merged
 # exit code is the run's; bad shard flags and incomplete shard sets are refused with exit 2.
-# Usage: shard_cli_test.sh /path/to/cullcheck /path/to/report_same
+# Fuzzing too: `fuzz --shard K/3` and merge give the unsharded summary and the same shrunk case.
+# Usage: shard_cli_test.sh /path/to/cullcheck /path/to/report_same SUBJECTS_DIR
 set -u
 cc="$1"
 same="$2"
+subjects="$3"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -50,6 +52,27 @@ for k in 0 1; do "$cc" -q verify "${vrun[@]}" --shard "$k/2" -o "v$k.json" >/dev
 "$cc" merge v1.json v0.json -o verify-merged.json >/dev/null 2>&1
 "$same" verify.json verify-merged.json || fail "2 merged verify shards differ from one run"
 
+# fuzz: the cases split in three; shards 0 and 1 both fail (cases 3 and 7), and the lowest is the
+# run's failure, shrunk the same.
+buggy="$subjects/buggy_sphere_subject"
+"$cc" -q fuzz --subject "$buggy" --budget 40 --seed 5 -o fuzz.json --out case >/dev/null 2>&1
+for k in 0 1 2; do "$cc" -q fuzz --subject "$buggy" --budget 40 --seed 5 --shard "$k/3" -o "fuzz$k.json" --out case >/dev/null 2>&1; done
+"$cc" merge fuzz2.json fuzz0.json fuzz1.json -o fuzz-merged.json >merge.out 2>&1
+[ $? -eq 1 ] || fail "merged fuzz shards that found a failure did not exit 1"
+grep -q '"first_failing_case": 3,' fuzz0.json && grep -q '"first_failing_case": 7,' fuzz1.json ||
+  fail "fuzz shards 0 and 1 no longer both fail (cases 3 and 7): the lowest-failure rule is not exercised"
+winner=$(sed -n 's/.*"counterexample": "\(case-shard[0-9]\)".*/\1/p' fuzz-merged.json)
+[ -n "$winner" ] || fail "the merged fuzz summary names no shard's counterexample folder"
+sed "s/\"$winner\"/\"case\"/" fuzz-merged.json >fuzz-merged-renamed.json
+"$same" fuzz.json fuzz-merged-renamed.json || fail "3 merged fuzz shards differ from one run"
+grep -q '"cases": 4,' fuzz.json || fail "the unsharded fuzz run no longer fails at case 4 (seed 5)"
+cmp -s case/scene.json "$winner/scene.json" && cmp -s case/path.json "$winner/path.json" ||
+  fail "the winning shard shrank to another case than the unsharded run"
+"$cc" -q fuzz --subject "$subjects/builtin_subject frustum" --budget 12 --seed 2 -o pass.json >/dev/null 2>&1
+for k in 0 1 2; do "$cc" -q fuzz --subject "$subjects/builtin_subject frustum" --budget 12 --seed 2 --shard "$k/3" -o "pass$k.json" >/dev/null 2>&1; done
+"$cc" merge pass0.json pass1.json pass2.json -o pass-merged.json >/dev/null 2>&1 || fail "merged passing fuzz shards did not exit 0"
+"$same" pass.json pass-merged.json || fail "3 merged passing fuzz shards differ from one run"
+
 # Bad input: exit 2 and a line that says what is wrong.
 expect_refusal() {  # what text command...
   local what=$1 text=$2
@@ -62,6 +85,8 @@ expect_refusal() {  # what text command...
 expect_refusal "shard 4 of 4" "K must be below N" "$cc" report --shard 4/4
 expect_refusal "shard 1/x" "is not K/N" "$cc" verify --shard 1/x
 expect_refusal "verify shard without a file" "needs --output" "$cc" verify "${vrun[@]}" --shard 0/2
+expect_refusal "fuzz shard without a file" "needs --output" "$cc" fuzz --subject "$buggy" --shard 0/2
+expect_refusal "fuzz and report shards" "cannot be merged together" "$cc" merge fuzz0.json shard1.json fuzz2.json
 expect_refusal "three of four shards" "every shard of the run is needed" "$cc" merge shard0.json shard1.json shard3.json
 expect_refusal "a shard twice" "is given twice" "$cc" merge shard0.json shard1.json shard1.json shard3.json
 "$cc" -q report "${run[@]}" --claim-seed 2 --shard 2/4 -o other2.json >/dev/null 2>&1
