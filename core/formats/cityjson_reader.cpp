@@ -11,6 +11,7 @@
 #include "core/formats/crs_projection.hpp"
 #include "core/formats/footprint_formats.hpp"
 #include "core/formats/footprint_rings.hpp"
+#include "core/formats/polygon_triangulation.hpp"
 #include "core/formats/mesh_formats.hpp"
 #include "core/scene_io.hpp"
 
@@ -194,7 +195,14 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       double height;
     };
     std::vector<Footprint> footprints;
-    std::size_t made_of_parts = 0, terrain = 0;
+    // With options.cityjson_meshes: each object's surfaces, triangulated, on its own vertices.
+    struct Mesh {
+      std::string object;
+      std::vector<Vec3> vertices;
+      std::vector<std::array<std::uint32_t, 3>> triangles;
+    };
+    std::vector<Mesh> meshes;
+    std::size_t made_of_parts = 0, terrain = 0, flat_surfaces = 0;
     for (const auto& [id, object] : doc["CityObjects"].items()) {
       const std::string name = "CityObjects[\"" + id + "\"]";
       ++report.features;
@@ -222,6 +230,39 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
         continue;
       }
       const std::vector<Surface> surfaces = surfaces_of(*best, vertices.size(), where, name + ".geometry");
+      if (options.cityjson_meshes) {
+        Mesh m{id, {}, {}};
+        std::map<std::size_t, std::uint32_t> local;  // file vertex -> this mesh's
+        for (const Surface& surface : surfaces) {
+          std::vector<Vec3> points;
+          std::vector<std::vector<std::size_t>> rings;
+          for (const auto& ring : surface.rings) {
+            rings.emplace_back();
+            for (std::size_t i : ring) rings.back().push_back(points.size()), points.push_back(vertices[i]);
+          }
+          const std::size_t given = points.size();
+          const auto triangles = triangulate_polygon(points, rings);
+          if (triangles.empty()) ++flat_surfaces;
+          // Points the triangulation added (rings crossing) are the mesh's own; given ones are shared.
+          std::vector<std::uint32_t> index(points.size());
+          std::size_t k = 0;
+          for (const auto& ring : surface.rings)
+            for (std::size_t i : ring) {
+              const auto [at, fresh] = local.emplace(i, static_cast<std::uint32_t>(m.vertices.size()));
+              if (fresh) m.vertices.push_back(vertices[i]);
+              index[k++] = at->second;
+            }
+          for (std::size_t j = given; j < points.size(); ++j) index[j] = static_cast<std::uint32_t>(m.vertices.size()), m.vertices.push_back(points[j]);
+          for (const auto& t : triangles) m.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+        }
+        if (m.triangles.empty()) {
+          ++report.skipped_invalid;
+          note(report, name + ": no surface spans any area, skipped");
+          continue;
+        }
+        meshes.push_back(std::move(m));
+        continue;
+      }
       double z0 = HUGE_VAL, z1 = -HUGE_VAL;
       std::vector<Vec2> plan_points;
       for (const Surface& s : surfaces)
@@ -266,7 +307,10 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       }
     }
     if (terrain > 0)
-      note(report, std::to_string(terrain) + " TINRelief (terrain) left out: buildings stand on z = 0, heights above their own ground");
+      note(report, std::to_string(terrain) + " TINRelief (terrain) left out: " +
+                       (options.cityjson_meshes ? "each mesh object is lowered to stand on z = 0"
+                                                : "buildings stand on z = 0, heights above their own ground"));
+    if (flat_surfaces > 0) note(report, std::to_string(flat_surfaces) + " surfaces span no area: left out of their meshes");
     if (made_of_parts > 0) note(report, std::to_string(made_of_parts) + " Buildings made of BuildingParts: each part a building");
 
     // The CRS: a projected plan CRS is taken as it is (times its unit); longitude/latitude is
@@ -281,12 +325,22 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
         Box2 box;
         for (const Footprint& f : footprints)
           for (Vec2 v : f.ring) box.extend(v);
+        for (const Mesh& m : meshes)
+          for (Vec3 v : m.vertices) box.extend(plan(v));
         const Vec2 c = box.center();
         for (Footprint& f : footprints) project_to_local_metres(crs, c.x, c.y, f.ring, where + ": " + f.object);
+        for (Mesh& m : meshes) {
+          std::vector<Vec2> points;
+          for (Vec3 v : m.vertices) points.push_back(plan(v));
+          project_to_local_metres(crs, c.x, c.y, points, where + ": " + m.object);
+          for (std::size_t i = 0; i < points.size(); ++i) m.vertices[i].x = points[i].x, m.vertices[i].y = points[i].y;
+        }
         report.crs = kind.name + " (" + how + "): longitude/latitude projected to a transverse Mercator at the data's centre";
       } else {
         for (Footprint& f : footprints)
           for (Vec2& v : f.ring) v = v * kind.metres_per_unit;
+        for (Mesh& m : meshes)
+          for (Vec3& v : m.vertices) v.x *= kind.metres_per_unit, v.y *= kind.metres_per_unit;
         report.crs = kind.name + " (" + how + "): projected, taken as they are";
       }
     }
@@ -315,13 +369,27 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       }
       scene.buildings.push_back(std::move(b));
     }
-    if (report.features > 0 && scene.buildings.empty())
+    for (Mesh& m : meshes) {  // each stands on z = 0, as footprint buildings do
+      double z0 = HUGE_VAL;
+      for (Vec3 v : m.vertices) z0 = std::min(z0, v.z);
+      for (Vec3& v : m.vertices) v.z -= z0;
+      MeshObject o;
+      o.id = static_cast<ObjectId>(scene.meshes.size());
+      o.name = std::move(m.object);
+      o.vertices = std::move(m.vertices);
+      o.triangles = std::move(m.triangles);
+      finish_mesh(o);
+      scene.meshes.push_back(std::move(o));
+    }
+    if (report.features > 0 && scene.object_count() == 0)
       throw InputError(where, "CityObjects", "none of the " + std::to_string(report.features) +
                                                  " city objects became a building (" + std::to_string(report.skipped_no_height) +
                                                  " without a usable height, " + std::to_string(report.skipped_invalid) +
                                                  " invalid, " + std::to_string(report.skipped_not_polygon) + " not buildings)");
     rebase_if_far(scene);
-    report.objects = report.buildings = scene.buildings.size();
+    report.buildings = scene.buildings.size();
+    report.meshes_kept = scene.meshes.size();
+    report.objects = scene.object_count();
     if (report_out) *report_out = std::move(report);
     return scene;
   } catch (const json::exception& e) {

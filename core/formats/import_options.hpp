@@ -25,6 +25,9 @@ struct FootprintOptions {
   // Overrides the file's "crs" member: a CRS PROJ knows ("EPSG:26919"), or "local" for plan
   // metres taken as they are. Empty: the file's, else GeoJSON's default (WGS84 longitude/latitude).
   std::string crs;
+  // CityJSON: keep each Building and BuildingPart as a mesh object (its surfaces of the highest
+  // LoD, triangulated) instead of a footprint prism: what the oracle and mesh-aware methods see.
+  bool cityjson_meshes = false;
 
   bool operator==(const FootprintOptions&) const = default;
 };

@@ -135,5 +135,47 @@ TEST(CityJsonImport, TheHagueLod2District) {
   EXPECT_NEAR(bounds.hi.y - bounds.lo.y, 615.598, 1e-3);
 }
 
+TEST(CityJsonImport, KeepsTheSurfacesAsMeshesWhenAsked) {
+  const std::string objects =
+      R"("b1": {"type": "Building", "geometry": [)" + box_solid(0, true) + R"(]},
+         "b2": {"type": "Building", "children": ["b2-a"]},
+         "b2-a": {"type": "BuildingPart", "parents": ["b2"], "geometry": [)" + box_solid(1, false) + R"(]})";
+  FootprintOptions options;
+  options.cityjson_meshes = true;
+  ImportReport report;
+  const Scene scene = cityjson_from_text(city(objects, box_vertices(0, 0, 0, 4) + "," + box_vertices(10, 0, 1, 6)), options, &report);
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_TRUE(scene.buildings.empty());
+  EXPECT_EQ(report.meshes_kept, 2u);
+  const MeshObject& b1 = scene.meshes[0];
+  EXPECT_EQ(b1.name, "b1");
+  EXPECT_EQ(b1.triangles.size(), 12u);
+  EXPECT_EQ(b1.vertices.size(), 8u);
+  EXPECT_TRUE(b1.closed) << "the solid's six faces share their edges";
+  // Each mesh stands on z = 0 (b2-a's box starts 1 m up): 4 and 6 m tall.
+  EXPECT_DOUBLE_EQ(b1.bounds.lo.z, 0.0);
+  EXPECT_DOUBLE_EQ(b1.bounds.hi.z, 4.0);
+  EXPECT_DOUBLE_EQ(scene.meshes[1].bounds.lo.z, 0.0);
+  EXPECT_DOUBLE_EQ(scene.meshes[1].bounds.hi.z, 6.0);
+  EXPECT_DOUBLE_EQ(scene.meshes[1].bounds.lo.x - b1.bounds.lo.x, 10.0);
+}
+
+TEST(CityJsonImport, TheHagueLod2DistrictAsMeshes) {
+  const std::string path = std::string(CULLCHECK_SHARED_DATA) + "/real/denhaag_lod2/DenHaag_01.city.json";
+  if (!std::filesystem::exists(path)) GTEST_FAIL() << "the real data is missing: " << path;
+  ImportOptions options;
+  options.footprints.cityjson_meshes = true;
+  ImportReport report;
+  const Scene scene = read_scene_file_any(path, options, &report);
+  EXPECT_EQ(scene.meshes.size(), 1990u) << "one mesh per solid, as one prism per solid";
+  EXPECT_TRUE(scene.buildings.empty());
+  std::size_t closed = 0;
+  double tallest = 0.0;
+  for (const MeshObject& m : scene.meshes) closed += m.closed ? 1 : 0, tallest = std::max(tallest, m.bounds.hi.z);
+  EXPECT_EQ(scene.triangle_count(), 35592u);
+  EXPECT_EQ(closed, 1988u) << "all but two solids share every edge of their surfaces";
+  EXPECT_NEAR(tallest, 25.071, 1e-6) << "as the prisms' tallest: each object stands on z = 0";
+}
+
 }  // namespace
 }  // namespace cullcheck::formats

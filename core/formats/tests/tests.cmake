@@ -8,6 +8,7 @@ if(TARGET GTest::gtest)
     ${CMAKE_CURRENT_LIST_DIR}/gltf_import_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/index_limits_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/obj_import_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/polygon_triangulation_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/round_trip_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/vertical_prism_test.cpp)
   target_link_libraries(formats_test PRIVATE cullcheck_formats cullcheck_generators TinyGLTF::TinyGLTF GTest::gtest_main
