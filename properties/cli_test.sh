@@ -34,7 +34,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report region cell vbaoi gate fuzz html; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region cell vbaoi gate fuzz html merge; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \

@@ -1,11 +1,10 @@
 #include "reports/claims.hpp"
+#include "core/parallel_indices.hpp"
 #include "core/progress.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <exception>
-#include <thread>
 #include <cmath>
 #include <cstdio>
 
@@ -139,10 +138,7 @@ ClaimCheck claim(std::string id, std::string source, std::string statement, std:
 }  // namespace
 
 namespace {
-unsigned search_threads(unsigned threads, int scenes) {
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  return std::max(1u, std::min<unsigned>(threads == 0 ? cores : threads, static_cast<unsigned>(std::max(1, scenes))));
-}
+unsigned search_threads(unsigned threads, int scenes) { return thread_count(threads, static_cast<std::size_t>(std::max(1, scenes))); }
 }  // namespace
 
 oracle::OracleOptions for_one_scene(oracle::OracleOptions options, unsigned threads, int scenes) {
@@ -163,27 +159,14 @@ void search_scenes(int scenes, unsigned threads, const Shard& shard, const std::
     blank.push_back(std::move(b));
   }
   std::vector<std::vector<ClaimCheck>> partials(static_cast<std::size_t>(scenes), blank);
-  std::vector<std::exception_ptr> failures(static_cast<std::size_t>(scenes));
   Progress progress(stage, shard.share(static_cast<std::size_t>(scenes)), "scenes");
-  std::atomic<int> next{0};
-  auto work = [&] {
-    for (int i = next++; i < scenes; i = next++) {
-      if (!shard.owns(static_cast<std::size_t>(i))) continue;
-      try {
-        search(i, partials[static_cast<std::size_t>(i)]);
-      } catch (...) {
-        failures[static_cast<std::size_t>(i)] = std::current_exception();
-      }
+  for_each_index(static_cast<std::size_t>(scenes), search_threads(threads, scenes), [&] {
+    return [&](std::size_t i) {
+      if (!shard.owns(i)) return;
+      search(static_cast<int>(i), partials[i]);
       progress.advance();
-    }
-  };
-  const unsigned n = search_threads(threads, scenes);
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : failures)  // the lowest scene's failure, as one thread would raise it
-    if (e) std::rethrow_exception(e);
+    };
+  });
   for (std::size_t scene = 0; scene < partials.size(); ++scene)
     for (std::size_t k = 0; k < claims.size(); ++k) {
       const std::vector<ClaimCheck>& partial = partials[scene];

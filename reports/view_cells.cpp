@@ -1,11 +1,10 @@
 #include "reports/view_cells.hpp"
+#include "core/parallel_indices.hpp"
 #include "core/progress.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <map>
-#include <thread>
+#include <memory>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -103,11 +102,6 @@ nlohmann::json cell_row(RegionCullingMethod& method, ViewCellPvs& cells_pvs, con
   return row;
 }
 
-unsigned cell_threads(unsigned threads, std::size_t cells) {
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads == 0 ? cores : threads, cells)));
-}
-
 }  // namespace
 
 nlohmann::json view_cell_rows(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
@@ -139,34 +133,22 @@ nlohmann::json view_cell_rows(const Scene& scene, const SceneSource& source, con
                         {"buildings", scene.buildings.size()}, {"cells", regions.size()},
                         {"cells_computed", chosen.size()},     {"cells_checked_by_oracle", checked.size()},
                         {"oracle_seconds", oracle_seconds},    {"runs", nlohmann::json::array()}};
-  const unsigned threads = cell_threads(options.threads, mine.size());
   for (const std::string& name : options.methods)
     for (CellSampling sampling : options.samplings) {
       std::vector<nlohmann::json> rows(mine.size());
-      std::vector<std::exception_ptr> failures(mine.size());
       Progress progress("view cells: " + name + " (" + std::string(cell_sampling_name(sampling)) + ")", mine.size(), "cells");
-      std::atomic<std::size_t> next{0};
-      auto work = [&] {  // each thread its own method: region methods keep per-query state
-        auto method = make_region_method(name, scene, method_options);
-        ViewCellPvs cells_pvs(*method, scene);
-        for (std::size_t i = next++; i < mine.size(); i = next++) {
+      for_each_index(mine.size(), options.threads, [&] {
+        // Each thread its own method: region methods keep per-query state.
+        auto method = std::shared_ptr<RegionCullingMethod>(make_region_method(name, scene, method_options));
+        auto cells_pvs = std::make_shared<ViewCellPvs>(*method, scene);
+        return [&, method, cells_pvs](std::size_t i) {
           const std::size_t k = mine[i];
-          try {
-            const auto found = answers.find(k);
-            rows[i] = cell_row(*method, cells_pvs, {regions[chosen[k]].ring, options.eye_height}, k, chosen[k], options, sampling,
-                               source, found == answers.end() ? nullptr : &found->second);
-          } catch (...) {
-            failures[i] = std::current_exception();
-          }
+          const auto found = answers.find(k);
+          rows[i] = cell_row(*method, *cells_pvs, {regions[chosen[k]].ring, options.eye_height}, k, chosen[k], options, sampling,
+                             source, found == answers.end() ? nullptr : &found->second);
           progress.advance();
-        }
-      };
-      std::vector<std::thread> pool;
-      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-      work();
-      for (std::thread& t : pool) t.join();
-      for (const std::exception_ptr& e : failures)  // the lowest cell's failure, as one thread would raise it
-        if (e) std::rethrow_exception(e);
+        };
+      });
       const auto probe = make_region_method(name, scene, method_options);
       out["runs"].push_back({{"method", name},
                              {"sampling", cell_sampling_name(sampling)},
