@@ -48,6 +48,10 @@ void SceneFlags::add(CLI::App& app) {
   app.add_option("--crs", f.crs,
                  "Footprint files: the coordinates' CRS (e.g. EPSG:26919), overriding the file's; local = plan metres as "
                  "they are (default: the file's crs member, else WGS84 longitude/latitude)");
+  app.add_flag("--cityjson-meshes", f.cityjson_meshes,
+               "CityJSON: keep each Building and BuildingPart as a mesh object (its highest-LoD surfaces, triangulated) "
+               "instead of a footprint prism: the oracle, frustum culling and subjects see the LoD2 shapes, 2.5D methods are "
+               "skipped");
 }
 
 void CoordinateFlags::add(CLI::App& app, const std::string& applies_to) {
