@@ -14,6 +14,7 @@
 #include "core/scene_io.hpp"
 #include "reports/frame_pictures.hpp"
 #include "reports/gate_verdict.hpp"
+#include "reports/shard_merge.hpp"
 #include "subjects/scene_files.hpp"
 #include "subjects/subject_error.hpp"
 #include "subjects/subject_method.hpp"
@@ -454,18 +455,7 @@ nlohmann::json fuzz_shard_json(const FuzzResult& r, const FuzzOptions& options) 
 
 nlohmann::json merge_fuzz_shards(const std::vector<nlohmann::json>& documents, const std::vector<std::string>& names) {
   using nlohmann::json;
-  std::vector<const json*> by_index(documents.size(), nullptr);
-  for (std::size_t k = 0; k < documents.size(); ++k) {
-    const json& s = documents[k].at("shard");
-    const std::size_t index = s.at("index"), count = s.at("count");
-    if (count != documents.size())
-      throw InputError(names[k], "shard.count", "is " + std::to_string(count) + ", but " + std::to_string(documents.size()) +
-                                                    " shard files were given: every shard of the run is needed, once");
-    if (index >= count || by_index[index]) throw InputError(names[k], "shard.index", "shard " + std::to_string(index) + " is given twice");
-    if (s.at("identity") != documents[0].at("shard").at("identity"))
-      throw InputError(names[k], "shard.identity", "differs from " + names[0] + "'s: the shards were run with other flags");
-    by_index[index] = &documents[k];
-  }
+  const std::vector<const json*> by_index = shards_in_order(documents, names);
   // The failure the unsharded run meets first: the lowest first failing case of any shard.
   const json* winner = by_index[0];
   std::int64_t first = -1;

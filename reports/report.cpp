@@ -161,11 +161,7 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
       violations.push_back({{"frame", x.frame}, {"building", x.building}, {"model", x.model}, {"witness", x.witness}, {"replay", x.replay}});
     runs.push_back({{"method", r.method},
                     {"claims_conservative", r.claims_conservative},
-                    {"parameters", {{"horizon_bins", in.method_options.horizon_bins},
-                                    {"quadtree_leaf_size", in.method_options.quadtree_leaf_size},
-                                    {"delta_radius", in.method_options.delta_radius},
-                                    {"delta_height", in.method_options.delta_height},
-                                    {"delta_turn", in.method_options.delta_turn}}},
+                    {"parameters", method_options_json(in.method_options)},
                     {"frames", r.cull_ms.size()},
                     {"cull_ms_median", median(r.cull_ms)},
                     {"cull_ms_p95", percentile(r.cull_ms, 95)},
@@ -296,6 +292,14 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
   report["claims"] = claims;
   report["gate"] = gate_verdict(v, report["scene"]["replay_flags"].get<std::string>(), in.thresholds).to_json();
   return report;
+}
+
+nlohmann::json method_options_json(const MethodOptions& o) {
+  return {{"horizon_bins", o.horizon_bins},
+          {"quadtree_leaf_size", o.quadtree_leaf_size},
+          {"delta_radius", o.delta_radius},
+          {"delta_height", o.delta_height},
+          {"delta_turn", o.delta_turn}};
 }
 
 nlohmann::json without_timings(const nlohmann::json& j) {

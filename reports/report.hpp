@@ -51,6 +51,8 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json header);
 // frames, next to the thesis's Table 3.2 culling-time speed-ups where it has one: OH(IS) vs
 // OH(OS), OH(IS) vs ΔH, OH(OS) vs ΔH (for both ΔH variants), frustum vs OH(OS).
 nlohmann::json speedups_json(const PathVerification& v);
+// The engine's knobs as report.json writes them (runs[].parameters; a shard's method_options).
+nlohmann::json method_options_json(const MethodOptions& options);
 // A report.json without what is timed (keys holding "_ms", "seconds", "per_second" or
 // "speedup", keys starting "ms_", and "machine"): what the same inputs give byte for byte, on any machine, any
 // number of threads, sharded or not.

@@ -61,13 +61,6 @@ AssembledReport assemble_report(const ReportParts& parts) {
 
 namespace {
 
-json method_options_json(const MethodOptions& o) {
-  return {{"horizon_bins", o.horizon_bins},
-          {"quadtree_leaf_size", o.quadtree_leaf_size},
-          {"delta_radius", o.delta_radius},
-          {"delta_height", o.delta_height},
-          {"delta_turn", o.delta_turn}};
-}
 MethodOptions method_options_from(const json& j) {
   MethodOptions o;
   o.horizon_bins = j.at("horizon_bins").get<std::uint32_t>();
@@ -78,20 +71,9 @@ MethodOptions method_options_from(const json& j) {
   return o;
 }
 
-// The first key whose value differs between two objects (for an error that says what differs).
-std::string first_difference(const json& a, const json& b) {
-  if (!a.is_object() || !b.is_object()) return "";
-  for (const auto& [key, value] : a.items())
-    if (!b.contains(key) || b[key] != value) return key;
-  for (const auto& [key, value] : b.items())
-    if (!a.contains(key)) return key;
-  return "";
-}
-
 }  // namespace
 
-json shard_document(const ReportParts& parts, const Shard& shard) {
-  json document = assemble_report(parts).document;
+json shard_document(json document, const ReportParts& parts, const Shard& shard) {
   json claims = json::array(), sections = json::array(), section_claims = json::object();
   for (const ClaimCheck& c : parts.searched_claims) claims.push_back(claim_to_raw_json(c));
   for (const std::string& name : report_section_names())
@@ -122,41 +104,15 @@ json shard_document(const ReportParts& parts, const Shard& shard) {
 }
 
 ReportParts merge_shard_documents(const std::vector<json>& documents, const std::vector<std::string>& names) {
-  if (documents.empty()) throw InputError("merge", "shards", "no shard files given");
-  // Every file a shard file, of the same count, each index once.
-  std::vector<const json*> by_index(documents.size(), nullptr);
-  std::vector<std::string> name_of(documents.size());
-  for (std::size_t k = 0; k < documents.size(); ++k) {
-    const json& d = documents[k];
-    if (!d.is_object() || !d.contains("shard") || !d["shard"].is_object())
-      throw InputError(names[k], "shard", "is missing: not a shard file (write one with `cullcheck report --shard K/N`)");
-    const json& s = d["shard"];
-    if (!s.contains("index") || !s.contains("count") || !s["index"].is_number_unsigned() || !s["count"].is_number_unsigned())
-      throw InputError(names[k], "shard", "has no index and count");
-    const std::size_t index = s["index"], count = s["count"];
-    if (count != documents.size())
-      throw InputError(names[k], "shard.count", "is " + std::to_string(count) + ", but " + std::to_string(documents.size()) +
-                                                    " shard files were given: every shard of the run is needed, once");
-    if (index >= count) throw InputError(names[k], "shard.index", std::to_string(index) + " is not below the count");
-    if (by_index[index])
-      throw InputError(names[k], "shard.index", "shard " + std::to_string(index) + " is given twice (also " + name_of[index] + ")");
-    by_index[index] = &d;
-    name_of[index] = names[k];
-  }
+  std::vector<std::string> name_of;
+  const std::vector<const json*> by_index = shards_in_order(documents, names, &name_of);
   const json& first = *by_index[0];
-  for (std::size_t k = 1; k < by_index.size(); ++k) {
-    const json& d = *by_index[k];
+  for (std::size_t k = 1; k < by_index.size(); ++k)
     for (const char* key : {"scene", "path"})
-      if (d.value(key, json()) != first.value(key, json()))
+      if (by_index[k]->value(key, json()) != first.value(key, json()))
         throw InputError(name_of[k], key, "differs from shard 0's (" + name_of[0] + ", key '" +
-                                              first_difference(first.value(key, json()), d.value(key, json())) +
+                                              first_difference(first.value(key, json()), by_index[k]->value(key, json())) +
                                               "'): not a shard of the same run");
-    if (d["shard"].value("identity", json()) != first["shard"].value("identity", json()))
-      throw InputError(name_of[k], "shard.identity",
-                       "differs from shard 0's (" + name_of[0] + ") in '" +
-                           first_difference(first["shard"]["identity"], d["shard"]["identity"]) +
-                           "': the shards were run with other flags");
-  }
   ReportParts parts;
   try {
     for (const char* key : {"schema_version", "tool", "machine", "scene", "path"})

@@ -57,8 +57,9 @@ AssembledReport assemble_report(const ReportParts& parts);
 // Violations of the sections' conservative methods (table_4_1, view_cells, vbaoi), which the gate counts.
 std::uint64_t section_gate_violations(const nlohmann::json& document);
 
-// A shard's file: the report of its share, with the raw parts under "shard".
-nlohmann::json shard_document(const ReportParts& parts, const Shard& shard);
+// A shard's file: `report` (assemble_report(parts).document, the report of its share) with the
+// raw parts under "shard".
+nlohmann::json shard_document(nlohmann::json report, const ReportParts& parts, const Shard& shard);
 // Reads N shard files (their texts' JSON, named for errors) into the parts of the whole run.
 // Throws InputError naming the file and what is wrong: not a shard file, shards of other runs,
 // a shard missing or given twice, results that disagree.

@@ -152,6 +152,49 @@ RegionRun merge_region(const std::vector<PathVerification>& shards, std::size_t 
 
 }  // namespace
 
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b) {
+  if (!a.is_object() || !b.is_object()) return "";
+  for (const auto& [key, value] : a.items())
+    if (!b.contains(key) || b[key] != value) return key;
+  for (const auto& [key, value] : b.items())
+    if (!a.contains(key)) return key;
+  return "";
+}
+
+std::vector<const nlohmann::json*> shards_in_order(const std::vector<nlohmann::json>& documents, const std::vector<std::string>& names,
+                                                   std::vector<std::string>* names_in_order) {
+  using nlohmann::json;
+  if (documents.empty()) throw InputError("merge", "shards", "no shard files given");
+  std::vector<const json*> by_index(documents.size(), nullptr);
+  std::vector<std::string> name_of(documents.size());
+  for (std::size_t k = 0; k < documents.size(); ++k) {
+    const json& d = documents[k];
+    if (!d.is_object() || !d.contains("shard") || !d["shard"].is_object())
+      throw InputError(names[k], "shard", "is missing: not a shard file (write one with --shard K/N)");
+    const json& s = d["shard"];
+    if (!s.contains("index") || !s.contains("count") || !s["index"].is_number_unsigned() || !s["count"].is_number_unsigned())
+      throw InputError(names[k], "shard", "has no index and count");
+    const std::size_t index = s["index"], count = s["count"];
+    if (count != documents.size())
+      throw InputError(names[k], "shard.count", "is " + std::to_string(count) + ", but " + std::to_string(documents.size()) +
+                                                    " shard files were given: every shard of the run is needed, once");
+    if (index >= count) throw InputError(names[k], "shard.index", std::to_string(index) + " is not below the count");
+    if (by_index[index])
+      throw InputError(names[k], "shard.index", "shard " + std::to_string(index) + " is given twice (also " + name_of[index] + ")");
+    by_index[index] = &d;
+    name_of[index] = names[k];
+  }
+  const json& identity = (*by_index[0])["shard"].value("identity", json());
+  for (std::size_t k = 1; k < by_index.size(); ++k)
+    if ((*by_index[k])["shard"].value("identity", json()) != identity)
+      throw InputError(name_of[k], "shard.identity",
+                       "differs from shard 0's (" + name_of[0] + ") in '" +
+                           first_difference(identity, (*by_index[k])["shard"].value("identity", json())) +
+                           "': the shards were run with other flags");
+  if (names_in_order) *names_in_order = std::move(name_of);
+  return by_index;
+}
+
 PathVerification merge_verifications(const std::vector<PathVerification>& shards, std::size_t max_replays) {
   if (shards.empty()) throw InputError("shards", "", "none given");
   const PathVerification& first = shards[0];

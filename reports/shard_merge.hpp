@@ -7,6 +7,8 @@
 // (earliest of equals), a claim's counterexample the one of the lowest scene.
 #pragma once
 
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "reports/claims.hpp"
@@ -14,6 +16,14 @@
 #include "reports/verification.hpp"
 
 namespace cullcheck {
+
+// N shard files (their JSON, named for errors) in shard order: each holds "shard" with an index
+// and a count, the count is N, each index comes once, and all have shard 0's "shard.identity".
+// Throws InputError naming the file otherwise.
+std::vector<const nlohmann::json*> shards_in_order(const std::vector<nlohmann::json>& documents, const std::vector<std::string>& names,
+                                                   std::vector<std::string>* names_in_order = nullptr);
+// The first key whose value differs between two objects ("" when none), for errors that say what differs.
+std::string first_difference(const nlohmann::json& a, const nlohmann::json& b);
 
 // `shards[k]` is shard k of shards.size(), run with the same options. Throws InputError when
 // they cannot be one run's shards (different methods or frames, a PVS that differs between them:

@@ -239,11 +239,6 @@ nlohmann::json view_cell_section(const nlohmann::json& raw) {
   return report;
 }
 
-nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
-                                const MethodOptions& method_options) {
-  return view_cell_section(view_cell_rows(scene, source, options, method_options));
-}
-
 std::string view_cell_table(const nlohmann::json& report) {
   std::ostringstream out;
   out << "view cells: " << report["cells_computed"].get<std::size_t>() << " of " << report["cells"].get<std::size_t>()

@@ -40,11 +40,9 @@ std::vector<Camera> cell_viewpoints(const ViewCell& cell, const Camera& clip = {
 std::string cell_replay_command(const SceneSource& source, const std::string& method, std::uint32_t cell, double epsilon,
                                 CellSampling sampling, double eye_height, const Camera& from);
 
-// {"epsilon", "eye_height", "cells", "cells_computed", "runs": [{method, sampling, carry, ...}]}.
-nlohmann::json view_cell_report(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
-                                const MethodOptions& method_options);
-// The same in two steps: one row per computed cell and run (what a shard writes), then the
-// section from the rows. merge_view_cell_rows joins the rows of a run's shards.
+// The report's "view_cells" section ({"epsilon", "eye_height", "cells", "cells_computed", "runs":
+// [{method, sampling, carry, ...}]}) in two steps: one row per computed cell and run (what a shard
+// writes), then the section from the rows. merge_view_cell_rows joins the rows of a run's shards.
 nlohmann::json view_cell_rows(const Scene& scene, const SceneSource& source, const ViewCellOptions& options,
                               const MethodOptions& method_options);
 nlohmann::json view_cell_section(const nlohmann::json& rows);

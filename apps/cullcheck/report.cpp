@@ -305,7 +305,7 @@ Runner add_report(CLI::App& app) {
                       {"max_replays", options.max_replays},
                       {"subjects", f->subjects.identity()}};
     const AssembledReport assembled = assemble_report(parts);
-    const nlohmann::json document = f->shard.whole() ? assembled.document : shard_document(parts, f->shard);
+    const nlohmann::json document = f->shard.whole() ? assembled.document : shard_document(assembled.document, parts, f->shard);
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({assembled.verdict}));
     if (!f->html.empty()) {

@@ -67,7 +67,8 @@ Runner add_verify(CLI::App& app) {
       nlohmann::json density;
       oracle::to_json(density, options.oracle.sampling);
       parts.identity = {{"methods", f->methods}, {"density", density}, {"regions", {f->regions.methods, f->regions.radius, f->regions.turn, f->regions.placement}}, {"max_replays", options.max_replays}};
-      const nlohmann::json document = f->shard.whole() ? assemble_report(parts).document : shard_document(parts, f->shard);
+      nlohmann::json document = assemble_report(parts).document;
+      if (!f->shard.whole()) document = shard_document(std::move(document), parts, f->shard);
       write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     }
     std::cout << coordinates_line(coordinates, f->path.source_name(f->camera)) << "\n" << summary_table(v);

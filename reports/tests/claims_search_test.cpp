@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reports/tests/synthetic_search.hpp"
+
 #include <stdexcept>
 
 #include "reports/delta_claims.hpp"
@@ -12,15 +14,8 @@
 namespace cullcheck {
 namespace {
 
-// Scene i checks i + 1 frames; scenes 3 and 5 refute the claim (scene 5 first, if it finishes first).
-void synthetic(int index, std::vector<ClaimCheck>& partial) {
-  partial[0].frames_checked += std::uint64_t(index) + 1;
-  if (index == 3 || index == 5) {
-    partial[0].violations += 2;
-    partial[0].holds = false;
-    partial[0].counterexample_replay = "replay scene " + std::to_string(index);
-  }
-}
+// Scene i checks i + 1 frames; scenes 3 and 5 refute the claim (synthetic_search.hpp).
+constexpr auto synthetic = testing::synthetic_search;
 
 TEST(ClaimSearch, AnyNumberOfThreadsWritesTheLedgerOfOne) {
   for (unsigned threads : {1u, 2u, 3u, 8u}) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reports/tests/synthetic_search.hpp"
+
 #include <functional>
 
 #include "core/errors.hpp"
@@ -39,15 +41,8 @@ class DropsHalf final : public CullingMethod {
   std::unique_ptr<CullingMethod> frustum_;
 };
 
-// Scene i of a synthetic claim search checks i + 1 frames; scenes 3 and 5 refute it.
-void synthetic(int index, std::vector<ClaimCheck>& partial) {
-  partial[0].frames_checked += std::uint64_t(index) + 1;
-  if (index == 3 || index == 5) {
-    partial[0].violations += 2;
-    partial[0].holds = false;
-    partial[0].counterexample_replay = "replay scene " + std::to_string(index);
-  }
-}
+// Scene i checks i + 1 frames; scenes 3 and 5 refute the claim (synthetic_search.hpp).
+constexpr auto synthetic = testing::synthetic_search;
 
 class ShardedRun : public ::testing::Test {
  protected:
@@ -89,7 +84,10 @@ class ShardedRun : public ::testing::Test {
   // The four shard files' JSON, as `cullcheck report --shard k/4` writes them.
   std::vector<json> shard_files() const {
     std::vector<json> files;
-    for (std::size_t k = 0; k < 4; ++k) files.push_back(json::parse(shard_document(run({k, 4}), {k, 4}).dump()));
+    for (std::size_t k = 0; k < 4; ++k) {
+      const ReportParts parts = run({k, 4});
+      files.push_back(json::parse(shard_document(assemble_report(parts).document, parts, {k, 4}).dump()));
+    }
     return files;
   }
   static std::string merge_error(const std::vector<json>& files) {
