@@ -12,8 +12,12 @@ if(TARGET cullcheck_generators_rc AND TARGET rapidcheck AND TARGET GTest::gtest)
   endif()
   target_link_libraries(generators_test PRIVATE cullcheck_generators cullcheck_generators_rc rapidcheck_gtest rapidcheck
                                                 GTest::gtest cullcheck_warnings)
-  add_test(NAME generators_test COMMAND generators_test)
-  set_tests_properties(generators_test PROPERTIES LABELS generators TIMEOUT 600)
+  if(COMMAND cullcheck_add_property_test)
+    cullcheck_add_property_test(generators_test LABELS generators TIMEOUT 600)
+  else()
+    add_test(NAME generators_test COMMAND generators_test)
+    set_tests_properties(generators_test PROPERTIES LABELS generators TIMEOUT 600)
+  endif()
 endif()
 
 # Literal pins of the generators' output (generators/tests/pinned_streams_test.cpp): a changed

@@ -250,6 +250,14 @@ expect_error_names "gate: missing program" "status 127"
 expect_exit 0 "gate: a subject that culls nothing is conservative" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving everything"
 expect_exit 1 "gate: --max-overestimation catches a subject that culls nothing" "$cc" gate "${small[@]}" "${walk[@]}" \
   --subject "$misbehaving everything" --max-overestimation 3
+# A path on which the oracle sees nothing proves nothing: a subject that culls everything would
+# pass it. Refused (exit 2) by default; --allow-empty-path accepts it. (This street walk of a
+# 3 x 3 city runs along the outer ring facing away from the city.)
+away=(--generator manhattan --seed 7 --params '{"blocks_x":3,"blocks_y":3}' --path-seed 2 --path-params '{"frames":30}')
+expect_exit 2 "gate: a path that sees nothing" "$cc" gate "${away[@]}" --subject "$misbehaving cull-all 0" -o "$work/e.json"
+expect_error_names "gate: a path that sees nothing" "the oracle saw no object at any of the 30 checked frames"
+[ "$(json_field "$work/e.json" "d['gate']['nothing_witnessed']")" = True ] && pass || fail "gate: report lacks nothing_witnessed"
+expect_exit 0 "gate: --allow-empty-path" "$cc" gate "${away[@]}" --subject "$misbehaving cull-all 0" --allow-empty-path -o "$work/e.json"
 # An approximate subject is judged by its pixel budget.
 expect_exit 1 "gate: approximate subject over its budget" "$cc" gate "${small[@]}" "${walk[@]}" --subject "$misbehaving approximate 100"
 grep -q "over budget: .* misdrawn pixels (budget 100)" "$work/out" && pass || fail "gate: no over-budget line"

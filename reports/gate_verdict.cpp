@@ -22,7 +22,7 @@ bool GateVerdict::passed() const {
 }
 
 int GateVerdict::exit_code() const {
-  if (subject_failed) return 2;
+  if (subject_failed || nothing_witnessed) return 2;
   return passed() ? 0 : 1;
 }
 
@@ -41,6 +41,7 @@ nlohmann::json GateVerdict::to_json() const {
           {"frames_over_pixel_budget", frames_over_budget},
           {"overestimation_failures", overestimation_failures},
           {"subject_failed", subject_failed},
+          {"nothing_witnessed", nothing_witnessed},
           {"checks", std::move(checks_json)},
           {"passed", passed()},
           {"exit_code", exit_code()}};
@@ -123,6 +124,22 @@ GateVerdict gate_verdict(const PathVerification& v, const std::string& scene, co
       for (const Violation& x : r.violations) c.replays.push_back(x.replay);
     }
     out.checks.push_back(std::move(c));
+  }
+  if (thresholds.require_witnessed) {
+    // Every run is checked at the same frames against the same oracle: the first run with
+    // checked frames says what the oracle saw.
+    for (const MethodRun& r : v.runs) {
+      if (r.witnessed_size.empty()) continue;
+      if (total(r.witnessed_size) == 0.0) {
+        out.nothing_witnessed = true;
+        out.checks.push_back({"path", "witnessed", Outcome::error,
+                              "the oracle saw no object at any of the " + count_text(r.witnessed_size.size(), "checked frame", "checked frames") +
+                                  ": a culler that culls everything would pass this path; choose a path that looks at the scene",
+                              {},
+                              0.0});
+      }
+      break;
+    }
   }
   out.section_violations = section_violations;
   if (section_violations > 0)

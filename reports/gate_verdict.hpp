@@ -9,7 +9,10 @@
 //  - pixel_budget: an approximate method stayed within its misdrawn pixels per frame;
 //  - overestimation: PVS / witnessed stayed within GateThresholds::max_overestimation (when set:
 //    catches a culler that culls nothing, which the conservative check cannot);
-//  - answers: an outside subject answered every frame (an error when it crashed, hung or lied).
+//  - answers: an outside subject answered every frame (an error when it crashed, hung or lied);
+//  - witnessed (with GateThresholds::require_witnessed, once per verification): the oracle saw
+//    some object at some checked frame. A path that sees nothing proves nothing: a culler that
+//    culls everything passes it. It is bad input (an error, exit 2), not a failed culler.
 // Region runs get the conservative check; the report's sections (Table 4.1, view cells, VbAoI)
 // one check for their conservative violations.
 #pragma once
@@ -26,12 +29,13 @@ namespace cullcheck {
 
 struct GateThresholds {
   std::optional<double> max_overestimation;
+  bool require_witnessed = false;
 };
 
 struct GateCheck {
   enum class Outcome { passed, failed, error, skipped };
   std::string method;
-  std::string check;  // conservative, pixel_budget, overestimation, answers, sections
+  std::string check;  // conservative, pixel_budget, overestimation, answers, sections, witnessed
   Outcome outcome = Outcome::passed;
   std::string message;               // what failed, or why it was skipped
   std::vector<std::string> replays;  // commands that reproduce a failure
@@ -47,9 +51,11 @@ struct GateVerdict {
   std::size_t frames_over_budget = 0;
   std::size_t overestimation_failures = 0;
   bool subject_failed = false;  // an outside subject crashed, hung or lied (exit 2)
+  bool nothing_witnessed = false;  // require_witnessed, and the oracle saw nothing (exit 2)
 
   bool passed() const;
-  // 0 passed; 1 the gate failed; 2 a subject failed (bad input), whatever else happened.
+  // 0 passed; 1 the gate failed; 2 a subject failed or the path saw nothing (bad input),
+  // whatever else happened.
   int exit_code() const;
   nlohmann::json to_json() const;
 };

@@ -1,6 +1,8 @@
 // cullcheck cell: the from-region PVS of a view cell (a navigable region or a given polygon) as
 // the union of ε-disc PVSs at sample points; with --from, held to the oracle from that eye; with
 // --nodes, also its PVSn (VbAoI), and with --to, a line of sight to an avatar checked against it.
+// With --shard K/N, only the K-th of every N samples, into a file `cullcheck merge` joins
+// (reports/cell_shards.hpp).
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -14,6 +16,7 @@
 #include "engine/shrinking/view_cell.hpp"
 #include "generators/navigable_regions.hpp"
 #include "oracle/ray_oracle.hpp"
+#include "reports/report.hpp"
 
 namespace cullcheck::cli {
 
@@ -23,7 +26,8 @@ Runner add_cell(CLI::App& app) {
     MethodFlags tuning;
     SamplingFlags oracle_sampling;
     CoordinateFlags coordinates;
-    std::string method = "shrink_adjustable_conservative", ring, sampling = "boundary", from;
+    std::string method = "shrink_adjustable_conservative", ring, sampling = "boundary", from, output;
+    Shard shard;
     std::int64_t cell = -1;
     double epsilon = 1.4142135623730951, eye_height = 1.7;
     bool no_carry = false, nodes = false;
@@ -64,7 +68,18 @@ Runner add_cell(CLI::App& app) {
                   "eye to it and that its region is in the PVSn")
       ->delimiter(',')
       ->expected(2);
+  add_shard_flag(*sub, f->shard,
+                 "Compute shard K of N (e.g. 0/4) of the cell's samples: the n-th sample is shard n mod N's; merge the "
+                 "shard files with `cullcheck merge` (needs --output; --from and --to check the merged cell)");
+  sub->add_option("--output,-o", f->output, "Also write the result to this file (a shard file with --shard)");
   return [f] {
+    if (!f->shard.whole()) {
+      if (f->output.empty()) throw InputError("flag", "shard", "needs --output: the file `cullcheck merge` joins");
+      if (!f->from.empty() || !f->to.empty())
+        throw InputError("flag", "shard",
+                         "cannot be given with --from or --to: a shard holds part of the cell; check the merged PVS "
+                         "with `cullcheck gate --camera FROM --visible IDS`");
+    }
     const Scene scene = f->scene.source.load();
     std::optional<Camera> from;
     if (!f->from.empty()) from = f->coordinates.camera(scene, f->from, "--from");
@@ -92,7 +107,8 @@ Runner add_cell(CLI::App& app) {
     const CellSampling sampling = parse_cell_sampling(f->sampling);
     if (!f->to.empty() && (!f->nodes || f->from.empty())) throw InputError("cell", "--to", "needs --nodes and --from");
     if (f->nodes) method->set_passive_targets(navigable_region_targets(regions, f->eye_height));
-    const ViewCellResult r = ViewCellPvs(*method, scene, f->nodes ? regions.size() : 0).compute(view_cell, f->epsilon, sampling, !f->no_carry);
+    const ViewCellResult r =
+        ViewCellPvs(*method, scene, f->nodes ? regions.size() : 0).compute(view_cell, f->epsilon, sampling, !f->no_carry, {}, f->shard);
     nlohmann::json out = {{"method", f->method},        {"epsilon", f->epsilon},
                           {"sampling", f->sampling},    {"samples", r.samples},
                           {"pvs", r.pvs},               {"pvs_size", r.pvs.size()},
@@ -112,6 +128,25 @@ Runner add_cell(CLI::App& app) {
       out["to"] = {{"node", node}, {"line_of_sight", sight}, {"node_in_pvs_n", listed}};
       if (sight && node >= 0 && !listed && method->claims_conservative()) exit_code = kExitGateFailed;
     }
+    if (!f->shard.whole()) {
+      // What must be the same in every shard of one cell: everything that decides its samples and PVS.
+      nlohmann::json cell_flags = f->cell >= 0 ? nlohmann::json{{"cell", f->cell}, {"cell_size", f->regions.cell_size}, {"cell_margin", f->regions.margin}}
+                                               : nlohmann::json{{"ring", view_cell.ring.size()}, {"ring_text", f->ring}};
+      out["shard"] = {{"kind", "cell"},
+                      {"index", f->shard.index},
+                      {"count", f->shard.count},
+                      {"cell_samples", r.cell_samples},
+                      {"identity", {{"scene", f->scene.source.replay_flags()},
+                                    {"cell", std::move(cell_flags)},
+                                    {"method", f->method},
+                                    {"method_options", method_options_json(f->tuning.options)},
+                                    {"epsilon", f->epsilon},
+                                    {"sampling", f->sampling},
+                                    {"eye_height", f->eye_height},
+                                    {"carry", !f->no_carry},
+                                    {"nodes", f->nodes}}}};
+    }
+    if (!f->output.empty()) write_text_file_atomically(f->output, out.dump(2) + "\n");
     std::cout << out.dump() << "\n";
     return exit_code;
   };

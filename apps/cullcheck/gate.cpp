@@ -31,7 +31,7 @@ Runner add_gate(CLI::App& app) {
     std::int64_t frame = -1;
     double max_overestimation = 0.0;
     std::size_t oracle_stride = 1;
-    bool no_pixels = false;
+    bool no_pixels = false, allow_empty_path = false;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand(
@@ -56,6 +56,9 @@ Runner add_gate(CLI::App& app) {
                   "Also fail a method whose PVS / witnessed exceeds this (a culler that culls nothing passes the "
                   "conservative check)")
       ->check(CLI::Range(1.0, 1e9));
+  sub->add_flag("--allow-empty-path", f->allow_empty_path,
+                "Accept a path on which the oracle sees nothing (refused by default, exit 2: a culler that culls "
+                "everything would pass it)");
   sub->add_option("--output,-o", f->output, "Report file to write (also when a subject fails)")->capture_default_str();
   sub->add_option("--junit", f->junit, "Also write the checks as JUnit XML (one test case per method and check)");
   return [f] {
@@ -88,6 +91,8 @@ Runner add_gate(CLI::App& app) {
     in.verification = &v;
     in.claims = subject_claims(v);
     if (f->max_overestimation > 0.0) in.thresholds.max_overestimation = f->max_overestimation;
+    // One camera, or one frame of a path, may rightly see nothing; a whole path must see something.
+    in.thresholds.require_witnessed = f->camera.empty() && f->frame < 0 && !f->allow_empty_path;
     nlohmann::json document = build_report(in);
     const GateVerdict verdict = gate_verdict(v, scene_flags, in.thresholds);
     // Bytes that are not UTF-8 (a subject's garbage) are replaced rather than fail the report.
@@ -109,6 +114,8 @@ Runner add_gate(CLI::App& app) {
         std::cout << "  " << r.method << ": " << r.witness_recheck.checked << " checked, " << r.witness_recheck.dropped << " dropped\n";
     std::cout << "gate: " << (verdict.passed() ? "passed" : "FAILED") << "; wrote " << f->output << "\n";
     if (v.aborted) std::cerr << "cullcheck: " << v.aborted->message << "\n";
+    for (const GateCheck& c : verdict.checks)
+      if (c.check == "witnessed") std::cerr << "cullcheck: gate: " << c.message << " (--allow-empty-path accepts it)\n";
     return verdict.exit_code();
   };
 }

@@ -1,13 +1,16 @@
-// cullcheck merge: the shard files of one run (`report --shard K/N`, `verify --shard K/N`) joined
-// into the report of the whole run, the one an unsharded run writes (timings aside).
+// cullcheck merge: the shard files of one run (`report`, `verify`, `fuzz` or `cell` with
+// --shard K/N) joined into the report of the whole run, the one an unsharded run writes (timings
+// aside).
 #include <iostream>
 #include <memory>
+#include <set>
 
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/page_writer.hpp"
 #include "apps/cullcheck/subcommands.hpp"
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
+#include "reports/cell_shards.hpp"
 #include "reports/fuzzing.hpp"
 #include "reports/junit.hpp"
 #include "reports/report.hpp"
@@ -22,7 +25,8 @@ Runner add_merge(CLI::App& app) {
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand(
-      "merge", "Join the N shard files of one run (report, verify or fuzz, written with --shard K/N) into the report of the whole run");
+      "merge", "Join the N shard files of one run (report, verify, fuzz or cell, written with --shard K/N) into the report of the "
+              "whole run");
   sub->add_option("shards", f->inputs, "Every shard file of the run, in any order")->required();
   sub->add_option("--output,-o", f->output, "Report file to write")->capture_default_str();
   sub->add_option("--html", f->html, "Also write the report page (its map's scene is rebuilt from the report's scene flags)");
@@ -30,13 +34,22 @@ Runner add_merge(CLI::App& app) {
   return [f] {
     std::vector<nlohmann::json> documents;
     for (const std::string& input : f->inputs) documents.push_back(parse_json_flag(read_text_file(input), input));
-    // Shards of `cullcheck fuzz`: the summary of the unsharded run.
-    std::size_t fuzz_shards = 0;
+    // The kind of each shard: "fuzz", "cell", or "" for report and verify shards.
+    std::set<std::string> kinds;
     for (const nlohmann::json& d : documents)
-      fuzz_shards += d.is_object() && d.contains("shard") && d["shard"].is_object() && d["shard"].value("kind", "") == "fuzz" ? 1 : 0;
-    if (fuzz_shards > 0) {
-      if (fuzz_shards != documents.size())
-        throw InputError("merge", "shards", "fuzz shards and report shards cannot be merged together");
+      kinds.insert(d.is_object() && d.contains("shard") && d["shard"].is_object() ? d["shard"].value("kind", "") : "");
+    if (kinds.size() > 1)
+      throw InputError("merge", "shards", "shards of different commands (fuzz, cell, report or verify) cannot be merged together");
+    // Shards of `cullcheck cell`: the cell's result.
+    if (kinds.contains("cell")) {
+      const nlohmann::json merged = merge_cell_shards(documents, f->inputs);
+      write_text_file_atomically(f->output, merged.dump(2) + "\n");
+      std::cout << "merged " << documents.size() << " cell shards: " << merged["samples"] << " samples, PVS of "
+                << merged["pvs_size"] << " buildings\nwrote " << f->output << "\n";
+      return 0;
+    }
+    // Shards of `cullcheck fuzz`: the summary of the unsharded run.
+    if (kinds.contains("fuzz")) {
       const nlohmann::json merged = merge_fuzz_shards(documents, f->inputs);
       write_text_file_atomically(f->output, merged.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
       const bool failed = merged.contains("failure");

@@ -90,10 +90,17 @@ ViewCellPvs::ViewCellPvs(RegionCullingMethod& method, const Scene& scene, std::s
 }
 
 ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSampling sampling, bool carry,
-                                    const Camera& camera) {
+                                    const Camera& camera, Shard shard) {
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<Vec2> samples = cell_samples(cell, epsilon, sampling);
+  std::vector<Vec2> samples = cell_samples(cell, epsilon, sampling);
   ViewCellResult out;
+  out.cell_samples = samples.size();
+  if (!shard.whole()) {
+    std::size_t kept = 0;
+    for (std::size_t n = 0; n < samples.size(); ++n)
+      if (shard.owns(n)) samples[kept++] = samples[n];
+    samples.resize(kept);
+  }
   out.samples = samples.size();
   std::vector<char>& known = known_;
   known.assign(scene_.buildings.size(), 0);

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/camera.hpp"
+#include "core/shard.hpp"
 #include "engine/method.hpp"
 
 namespace cullcheck {
@@ -55,7 +56,8 @@ std::vector<Vec2> cell_samples(const ViewCell& cell, double epsilon, CellSamplin
 
 struct ViewCellResult {
   std::vector<ObjectId> pvs;        // sorted, the union over samples
-  std::size_t samples = 0;
+  std::size_t samples = 0;          // samples computed (a shard's share)
+  std::size_t cell_samples = 0;     // samples of the whole cell
   CullStatistics stats;             // summed over samples; cull_ms = wall time of the whole cell
   std::vector<std::size_t> sample_pvs_size;
   std::vector<ObjectId> passive;    // sorted, the union of the samples' passive targets (if any)
@@ -71,8 +73,10 @@ class ViewCellPvs {
   // `camera` gives the eyes' clip planes (its position and orientation are ignored: each
   // sample's camera is omnidirectional at the sample, at the cell's eye height). With `carry`,
   // decisions carry from sample to sample where the method supports it (carries_known).
+  // `shard` computes only its samples (the n-th sample when n mod N = K): the union of the N
+  // shards' PVSs is the cell's, carried or not.
   ViewCellResult compute(const ViewCell& cell, double epsilon, CellSampling sampling, bool carry,
-                         const Camera& camera = {});
+                         const Camera& camera = {}, Shard shard = {});
 
  private:
   RegionCullingMethod& method_;

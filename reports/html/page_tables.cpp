@@ -46,6 +46,7 @@ std::string gate_section(const json& report) {
                     count(value_of(gate, "frames_over_pixel_budget")) + " frames over an approximate method's pixel budget, " +
                     count(value_of(gate, "section_violations")) + " violations in the report's other sections" +
                     (gate.value("subject_failed", false) ? "; an outside subject failed (crashed, hung or broke the protocol)" : "") +
+                    (gate.value("nothing_witnessed", false) ? "; the oracle saw nothing on the path, which proves nothing" : "") +
                     ".</div>\n";
   const json& checks = member(gate, "checks");
   if (checks.is_array() && !checks.empty()) {

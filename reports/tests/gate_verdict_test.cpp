@@ -271,6 +271,36 @@ TEST(GateVerdict, RunWithNoCheckedFrameIsSkipped) {
   EXPECT_EQ(g.exit_code(), 0);
 }
 
+// A path on which the oracle saw nothing proves nothing: with require_witnessed it is bad input
+// (exit 2) even though the conservative check passes; without it, and when something was seen,
+// the verdict is unchanged.
+TEST(GateVerdict, PathThatSeesNothingIsRefusedWhenRequired) {
+  PathVerification v;
+  MethodRun r = conservative_run("subject:cull-all");
+  r.pvs_size = {0, 0};
+  r.checked_pvs_size = {0, 0};
+  r.witnessed_size = {0, 0};
+  v.runs.push_back(r);
+  GateThresholds require;
+  require.require_witnessed = true;
+  const GateVerdict g = gate_verdict(v, "", require);
+  ASSERT_EQ(g.checks.size(), 2u);
+  EXPECT_EQ(g.checks[0].outcome, Outcome::passed);  // nothing seen, nothing missed
+  EXPECT_EQ(g.checks[1].method, "path");
+  EXPECT_EQ(g.checks[1].check, "witnessed");
+  EXPECT_EQ(g.checks[1].outcome, Outcome::error);
+  EXPECT_EQ(g.checks[1].message,
+            "the oracle saw no object at any of the 2 checked frames: a culler that culls everything would pass this "
+            "path; choose a path that looks at the scene");
+  EXPECT_TRUE(g.nothing_witnessed);
+  EXPECT_FALSE(g.passed());
+  EXPECT_EQ(g.exit_code(), 2);
+  EXPECT_EQ(gate_verdict(v, "").exit_code(), 0);  // not required: the fuzzer's empty views are fine
+  v.runs[0].witnessed_size = {0, 1};
+  EXPECT_EQ(gate_verdict(v, "", require).checks.size(), 1u);
+  EXPECT_EQ(gate_verdict(v, "", require).exit_code(), 0);
+}
+
 // Regression test of a bug it found, since fixed (root cause in subjects/protocol.cpp's excerpt(), see ParseVisible.GarbageExcerptIsValidUtf8):
 // a subject whose garbage line holds bytes that are not UTF-8 aborts the run with that text in
 // Abort::message; the verdict's JSON then cannot be written (nlohmann::json's dump() throws
@@ -309,7 +339,7 @@ TEST(GateVerdict, ToJson) {
   const nlohmann::json expected = nlohmann::json::parse(R"({
     "conservative_violations": 1, "conservative_misdrawn_pixels": 0, "section_violations": 0,
     "frames_over_pixel_budget": 0, "overestimation_failures": 0, "subject_failed": false,
-    "checks": [
+    "nothing_witnessed": false, "checks": [
       {"method": "oh_os_conservative", "check": "conservative", "outcome": "failed",
        "message": "culled 1 object the oracle saw, over 1 frame", "replays": ["cullcheck verify --a"]},
       {"method": "frustum", "check": "conservative", "outcome": "passed"}],

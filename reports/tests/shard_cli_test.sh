@@ -5,6 +5,7 @@
 # give the same section; the same for `verify --shard K/2 -o`; the merged
 # exit code is the run's; bad shard flags and incomplete shard sets are refused with exit 2.
 # Fuzzing too: `fuzz --shard K/3` and merge give the unsharded summary and the same shrunk case.
+# And one view cell: `cell --shard K/3` and merge give the cell's PVS and PVSn.
 # Usage: shard_cli_test.sh /path/to/cullcheck /path/to/report_same SUBJECTS_DIR
 set -u
 cc="$1"
@@ -73,6 +74,25 @@ for k in 0 1 2; do "$cc" -q fuzz --subject "$subjects/builtin_subject frustum" -
 "$cc" merge pass0.json pass1.json pass2.json -o pass-merged.json >/dev/null 2>&1 || fail "merged passing fuzz shards did not exit 0"
 "$same" pass.json pass-merged.json || fail "3 merged passing fuzz shards differ from one run"
 
+# cell: one view cell's samples split in three; the union is the cell's PVS and PVSn.
+crun=(--generator manhattan --seed 3 --params '{"blocks_x":4,"blocks_y":4}' --cell 5 --nodes --method shrink_former)
+"$cc" -q cell "${crun[@]}" -o cell.json >/dev/null 2>&1 || fail "cell exited $?"
+for k in 0 1 2; do "$cc" -q cell "${crun[@]}" --shard "$k/3" -o "cell$k.json" >/dev/null 2>&1 || fail "cell --shard $k/3 exited $?"; done
+"$cc" merge cell2.json cell0.json cell1.json -o cell-merged.json >/dev/null 2>&1 || fail "merging cell shards exited $?"
+python3 - cell.json cell-merged.json cell0.json cell1.json cell2.json <<'PY' || fail "3 merged cell shards differ from one run"
+import json, sys
+one, merged, *shards = [json.load(open(p)) for p in sys.argv[1:]]
+keys = ["method", "epsilon", "sampling", "samples", "pvs", "pvs_size", "pvs_n", "pvs_n_size"]
+diff = [k for k in keys if one.get(k) != merged.get(k)]
+if diff: print("differs:", diff); sys.exit(1)
+if set(one) != set(merged): print("keys:", sorted(set(one) ^ set(merged))); sys.exit(1)
+# The work was split: every shard computed a third of the samples, none the whole PVS alone.
+if sorted(s["samples"] for s in shards) != sorted([one["samples"] // 3 + (k < one["samples"] % 3) for k in range(3)]):
+    print("shard samples", [s["samples"] for s in shards], "of", one["samples"]); sys.exit(1)
+if one["samples"] < 6 or all(s["pvs_size"] == one["pvs_size"] for s in shards):
+    print("the shards did not split the cell's work"); sys.exit(1)
+PY
+
 # Bad input: exit 2 and a line that says what is wrong.
 expect_refusal() {  # what text command...
   local what=$1 text=$2
@@ -87,6 +107,11 @@ expect_refusal "shard 1/x" "is not K/N" "$cc" verify --shard 1/x
 expect_refusal "verify shard without a file" "needs --output" "$cc" verify "${vrun[@]}" --shard 0/2
 expect_refusal "fuzz shard without a file" "needs --output" "$cc" fuzz --subject "$buggy" --shard 0/2
 expect_refusal "fuzz and report shards" "cannot be merged together" "$cc" merge fuzz0.json shard1.json fuzz2.json
+expect_refusal "cell shard without a file" "needs --output" "$cc" cell "${crun[@]}" --shard 0/3
+expect_refusal "cell shard with --from" "cannot be given with --from" "$cc" cell "${crun[@]}" --shard 0/3 -o c.json \
+  --from '{"position":[1,1,1.7]}'
+expect_refusal "cell and fuzz shards" "cannot be merged together" "$cc" merge cell0.json fuzz1.json cell2.json
+expect_refusal "two of three cell shards" "every shard of the run is needed" "$cc" merge cell0.json cell2.json
 expect_refusal "three of four shards" "every shard of the run is needed" "$cc" merge shard0.json shard1.json shard3.json
 expect_refusal "a shard twice" "is given twice" "$cc" merge shard0.json shard1.json shard1.json shard3.json
 "$cc" -q report "${run[@]}" --claim-seed 2 --shard 2/4 -o other2.json >/dev/null 2>&1
