@@ -264,6 +264,11 @@ grep -q "over budget: .* misdrawn pixels (budget 100)" "$work/out" && pass || fa
 # Recorded visible sets: cull's per-frame output is a valid file; a tampered one fails.
 "$cc" generate "${small[@]}" -o "$work/s.json" --path-output "$work/p.json" --path-params '{"frames":6}' >/dev/null
 "$cc" cull --scene "$work/s.json" --path "$work/p.json" --method frustum | sed 's/"pvs":/"ids":/' >"$work/rec.jsonl"
+# cull --recorded writes the file itself, with a ready line carrying the method's claim.
+"$cc" cull --scene "$work/s.json" --path "$work/p.json" --method oh_os_conservative --recorded "$work/rec-oh.jsonl" >/dev/null
+head -1 "$work/rec-oh.jsonl" | grep -q '"claims":"conservative"' && pass || fail "cull --recorded: no conservative ready line"
+expect_exit 0 "gate --pvs from cull --recorded" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec-oh.jsonl" -o "$work/r.json"
+[ "$(json_field "$work/r.json" "d['runs'][0]['method']")" = "recorded:oh_os_conservative" ] && pass || fail "cull --recorded: the gate did not name the method"
 expect_exit 0 "gate --pvs" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec.jsonl" -o "$work/r.json"
 sed '3s/"ids":\[[0-9,]*\]/"ids":[]/' "$work/rec.jsonl" >"$work/rec-miss.jsonl"
 expect_exit 1 "gate --pvs with a missing object" "$cc" gate --scene "$work/s.json" --path "$work/p.json" --pvs "$work/rec-miss.jsonl" \

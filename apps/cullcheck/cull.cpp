@@ -1,4 +1,7 @@
-// cullcheck cull: one engine method for a camera or along a path, its PVS as JSON lines.
+// cullcheck cull: one engine method for a camera or along a path, its PVS as JSON lines; with
+// --recorded FILE also as a recorded-PVS file (`gate --pvs FILE`, README "The gate"), so a
+// method's answers on one scene can be held to the oracle on another with the same ids (prisms
+// against their LoD2 meshes).
 #include <iostream>
 #include <memory>
 
@@ -14,7 +17,7 @@ Runner add_cull(CLI::App& app) {
     SceneFlags scene;
     MethodFlags tuning;
     CoordinateFlags coordinates;
-    std::string method = "oh_os_conservative", camera, path;
+    std::string method = "oh_os_conservative", camera, path, recorded;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand("cull", "Run one engine method for a camera and print its PVS as JSON");
@@ -24,6 +27,9 @@ Runner add_cull(CLI::App& app) {
   auto* camera = sub->add_option("--camera", f->camera, "Camera as JSON (see --coordinates)");
   auto* path = sub->add_option("--path", f->path, "Camera path file: prints one JSON line per frame");
   camera->excludes(path);
+  sub->add_option("--recorded", f->recorded,
+                  "Also write the PVSs as a recorded-PVS file for `cullcheck gate --pvs` (a ready line naming the method "
+                  "and, when it claims it, conservativeness; then {\"frame\":i,\"ids\":[...]} per frame)");
   f->coordinates.add(*sub, "--camera and --path");
   return [f] {
     const Scene scene = f->scene.source.load();
@@ -38,14 +44,23 @@ Runner add_cull(CLI::App& app) {
     } else {
       cameras.push_back(f->coordinates.camera(scene, f->camera, "--camera"));
     }
+    std::string recorded;
+    if (!f->recorded.empty()) {
+      nlohmann::json ready = {{"type", "ready"}, {"name", f->method}};
+      if (method->claims_conservative()) ready["claims"] = "conservative";
+      recorded = ready.dump() + "\n";
+    }
     for (std::size_t frame = 0; frame < cameras.size(); ++frame) {
       if (const std::string why = method->unsupported_camera(cameras[frame]); !why.empty())
         throw InputError(f->path.empty() ? "camera" : "path frame " + std::to_string(frame), "projection", why);
-      nlohmann::json out = pvs_json(method->cull(cameras[frame]));
+      const CullResult result = method->cull(cameras[frame]);
+      nlohmann::json out = pvs_json(result);
       out["method"] = f->method;
       if (!f->path.empty()) out["frame"] = frame;
       std::cout << out.dump() << "\n";
+      if (!f->recorded.empty()) recorded += nlohmann::json{{"frame", frame}, {"ids", result.pvs}}.dump() + "\n";
     }
+    if (!f->recorded.empty()) write_text_file_atomically(f->recorded, recorded);
     return 0;
   };
 }
