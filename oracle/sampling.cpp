@@ -28,8 +28,7 @@ void to_json(nlohmann::json& j, const SamplingOptions& o) {
        {"max_samples_per_building", o.max_samples_per_building},
        {"graze_offset", o.graze_offset},
        {"frustum_resolution", o.frustum_resolution},
-       {"seed", o.seed},
-       {"threads", o.threads}};
+       {"seed", o.seed}};  // not threads: the answers do not depend on them (reports stay the same on any machine)
 }
 
 void from_json(const nlohmann::json& j, SamplingOptions& o) {

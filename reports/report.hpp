@@ -54,7 +54,8 @@ nlohmann::json speedups_json(const PathVerification& v);
 // The engine's knobs as report.json writes them (runs[].parameters; a shard's method_options).
 nlohmann::json method_options_json(const MethodOptions& options);
 // A report.json without what is timed (keys holding "_ms", "seconds", "per_second" or
-// "speedup", keys starting "ms_", and "machine"): what the same inputs give byte for byte, on any machine, any
+// "speedup", keys starting "ms_", "machine", and "threads", which says how a run was spread, not
+// what it found): what the same inputs give byte for byte, on any machine, any
 // number of threads, sharded or not.
 nlohmann::json without_timings(const nlohmann::json& report);
 // The per-method table printed after a run.

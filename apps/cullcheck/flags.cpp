@@ -158,6 +158,10 @@ void SamplingFlags::add(CLI::App& app) {
   app.add_option("--face-grid", sampling.face_grid, "Oracle: least grid intervals per face")->capture_default_str();
   app.add_option("--frustum-resolution", sampling.frustum_resolution, "Oracle: stratified rays per image row")
       ->capture_default_str();
+  sampling.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 1024u));
+  app.add_option("--oracle-threads", sampling.threads,
+                 "Oracle: threads casting rays (default: every core); its answers are the same for any number")
+      ->check(CLI::Range(1, 1024));
 }
 
 void MethodFlags::add(CLI::App& app) {

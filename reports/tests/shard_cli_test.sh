@@ -52,6 +52,9 @@ vrun=(--generator manhattan --seed 3 --params '{"blocks_x":4,"blocks_y":4}' --pa
 for k in 0 1; do "$cc" -q verify "${vrun[@]}" --shard "$k/2" -o "v$k.json" >/dev/null 2>&1; done
 "$cc" merge v1.json v0.json -o verify-merged.json >/dev/null 2>&1
 "$same" verify.json verify-merged.json || fail "2 merged verify shards differ from one run"
+# The oracle on one thread answers what it answers on every core (--oracle-threads).
+"$cc" -q verify "${vrun[@]}" --oracle-threads 1 -o verify-one-thread.json >/dev/null 2>&1
+"$same" verify.json verify-one-thread.json || fail "the oracle on one thread differs from every core"
 
 # fuzz: the cases split in three; shards 0 and 1 both fail (cases 3 and 7), and the lowest is the
 # run's failure, shrunk the same.

@@ -161,6 +161,16 @@ TEST_F(ShardedRun, MergeRefusesFilesThatAreNotTheShardsOfOneRun) {
   EXPECT_NE(merge_error(other).find("not a shard file"), std::string::npos);
 }
 
+// What "timings aside" drops, pinned: timed keys and how the run was spread (threads), at any depth.
+TEST(WithoutTimings, DropsTimedKeysAndThreadsOnly) {
+  const nlohmann::json report = nlohmann::json::parse(R"({
+    "machine": {"hardware_threads": 8}, "pvs": 3, "cull_ms": 1.5, "ms_per_cell": 2,
+    "graph": {"threads": 2, "build_seconds": 4, "nodes": 10, "rays_per_second": 9, "speedup": 1.6},
+    "runs": [{"method": "frustum", "cull_ms_median": 0.3, "violations": 0}]})");
+  EXPECT_EQ(without_timings(report), nlohmann::json::parse(R"({
+    "pvs": 3, "graph": {"nodes": 10}, "runs": [{"method": "frustum", "violations": 0}]})"));
+}
+
 TEST(ShardFlag, ReadsKOfN) {
   EXPECT_EQ(parse_shard("2/4"), (Shard{2, 4}));
   EXPECT_EQ(parse_shard("0/1"), (Shard{0, 1}));
