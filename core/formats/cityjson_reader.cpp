@@ -79,8 +79,11 @@ std::vector<Surface> surfaces_of(const json& g, std::size_t vertex_count, const 
     s.semantic = semantic_of(g, path);
     out.push_back(std::move(s));
   };
-  const json& b = g["boundaries"];
-  if (!b.is_array()) throw InputError(where, field, "has no boundaries array");
+  // find, not operator[]: on a const json, [] of a missing key is undefined (a fuzzer-found
+  // use-after-free, fuzz/regressions/fuzz_cityjson/missing_boundaries.json).
+  const auto found = g.find("boundaries");
+  if (found == g.end() || !found->is_array()) throw InputError(where, field, "has no boundaries array");
+  const json& b = *found;
   std::function<void(const json&, int, std::vector<std::size_t>)> walk = [&](const json& node, int level, std::vector<std::size_t> path) {
     if (!node.is_array()) throw InputError(where, field, "has boundaries nested less deeply than a " + type + "'s");
     for (std::size_t k = 0; k < node.size(); ++k) {

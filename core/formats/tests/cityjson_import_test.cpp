@@ -112,6 +112,10 @@ TEST(CityJsonImport, BadFilesNameWhatIsWrong) {
             std::string::npos);
   EXPECT_NE(message(R"({"type": "CityJSON", "version": "1.0", "CityObjects": {}, "vertices": [[1, "x", 3]]})").find("vertices[0]"),
             std::string::npos);
+  // A geometry without "boundaries" (here misspelt): named, not read out of freed memory (a
+  // libFuzzer find, fuzz/regressions/fuzz_cityjson/missing_boundaries.json).
+  const std::string misspelt = R"("a": {"type": "Building", "geometry": [{"type": "MultiSurface", "lod": 2, "boendaries": [[[0, 1, 2]]]}]})";
+  EXPECT_NE(message(city(misspelt, box_vertices(0, 0, 0, 4))).find("has no boundaries array"), std::string::npos);
 }
 
 TEST(CityJsonImport, TheHagueLod2District) {
