@@ -1,6 +1,5 @@
 #include "reports/cell_shards.hpp"
 
-#include <algorithm>
 #include <cstdint>
 #include <set>
 

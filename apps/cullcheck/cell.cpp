@@ -131,7 +131,7 @@ Runner add_cell(CLI::App& app) {
     if (!f->shard.whole()) {
       // What must be the same in every shard of one cell: everything that decides its samples and PVS.
       nlohmann::json cell_flags = f->cell >= 0 ? nlohmann::json{{"cell", f->cell}, {"cell_size", f->regions.cell_size}, {"cell_margin", f->regions.margin}}
-                                               : nlohmann::json{{"ring", view_cell.ring.size()}, {"ring_text", f->ring}};
+                                               : nlohmann::json{{"ring", f->ring}};
       out["shard"] = {{"kind", "cell"},
                       {"index", f->shard.index},
                       {"count", f->shard.count},
