@@ -10,6 +10,7 @@
 #include "engine/shrinking/minkowski_shrinking.hpp"
 #include "engine/shrinking/region_shrinking.hpp"
 #include "engine/image_space/image_space_horizon.hpp"
+#include "engine/online_image_space/online_culling.hpp"
 
 namespace cullcheck {
 namespace {
@@ -30,13 +31,15 @@ std::string CullingMethod::unsupported_camera(const Camera& camera) const {
 }
 
 std::string method_unavailable_reason(std::string_view name, const Scene& scene) {
-  if (name == "frustum" || scene.prisms_only()) return "";
+  // Frustum culling and on-line image-space culling work on polygons, so on any scene.
+  if (name == "frustum" || name == "online_is" || name == "online_is_guarded" || scene.prisms_only()) return "";
   return "the scene holds " + std::to_string(scene.meshes.size()) + " mesh object(s) that are not vertical prisms; " +
          std::string(name) + " models every object as convex vertical prisms (2.5D), so only the oracle, frustum " +
          "culling and outside subjects run on it";
 }
 
-std::vector<std::string> method_names() { return {"frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded"}; }
+std::vector<std::string> method_names() { return {"frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded", "online_is",
+                                                 "online_is_guarded"}; }
 
 std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& scene, const MethodOptions& options) {
   if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
@@ -50,6 +53,10 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
     return std::make_unique<ObjectSpaceHorizonCulling>(scene, ShadowRule::conservative, options);
   if (name == "delta_h_thesis") return std::make_unique<ThesisDeltaHorizonCulling>(scene, options);
   if (name == "delta_h_guarded") return std::make_unique<GuardedDeltaHorizonCulling>(scene, options);
+  if (name == "online_is")
+    return std::make_unique<OnlineImageSpaceCulling>(scene, OnlineImageSpaceCulling::Variant::published, options.online);
+  if (name == "online_is_guarded")
+    return std::make_unique<OnlineImageSpaceCulling>(scene, OnlineImageSpaceCulling::Variant::guarded, options.online);
   throw unknown("method", name, method_names());
 }
 

@@ -16,6 +16,7 @@
 
 #include "core/camera.hpp"
 #include "core/scene.hpp"
+#include "engine/online_image_space/online_options.hpp"
 
 namespace cullcheck {
 
@@ -72,6 +73,8 @@ struct MethodOptions {
   double delta_radius = 0.5;  // plan distance from the anchor eye, metres (ε)
   double delta_height = 0.5;  // vertical distance from the anchor eye, metres
   double delta_turn = 0.05;   // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
+  // On-line image-space culling (engine/online_image_space/): Δ, s, ρ, D, V, R, ...
+  OnlineCullingOptions online;
 };
 
 // A from-region query (thesis ch. 4): every camera whose eye lies within `radius` of

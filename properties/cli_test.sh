@@ -290,11 +290,12 @@ expect_exit 0 "gate: orthographic camera" "$cc" gate --scene "$work/s.json" --me
 [ "$(json_field "$work/o.json" "d['runs'][1]['frames_skipped'], d['runs'][2]['frames_pvs_equal_to']['frustum']")" = "1 1" ] && pass \
   || fail "gate: orthographic camera: horizon method not skipped, or the subject differs from frustum culling"
 
-# Mesh scenes: frustum culling and subjects run, 2.5D methods are skipped with a reason.
+# Mesh scenes: frustum culling, on-line image-space culling (it works on polygons) and subjects
+# run, 2.5D methods are skipped with a reason.
 expect_exit 0 "gate on a mesh scene" "$cc" gate --generator openings --params '{"blocks_x":1,"blocks_y":2}' \
   --path-params '{"frames":4}' --method all --subject "$subjects/minimal_subject" -o "$work/mesh.json"
-[ "$(json_field "$work/mesh.json" "len(d['skipped_methods']), [r['method'] for r in d['runs']]")" = "5 ['frustum', 'subject:minimal-box']" ] \
-  && pass || fail "gate on a mesh scene: expected frustum and the subject to run, five 2.5D methods skipped"
+[ "$(json_field "$work/mesh.json" "len(d['skipped_methods']), [r['method'] for r in d['runs']]")" = "5 ['frustum', 'online_is', 'online_is_guarded', 'subject:minimal-box']" ] \
+  && pass || fail "gate on a mesh scene: expected frustum, online_is(_guarded) and the subject to run, five 2.5D methods skipped"
 # Point and region methods alike say why they were skipped (5 of each).
 expect_exit 0 "verify on a mesh scene with region methods" "$cc" verify --generator openings --params '{"blocks_x":1,"blocks_y":1}' \
   --path-params '{"frames":2}' --region-method all

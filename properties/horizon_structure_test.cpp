@@ -146,7 +146,10 @@ TEST(Quadtree, InvariantsHoldOnAGrid) {
 RC_GTEST_PROP(StructureInvariants, HoldOnGeneratedScenesAfterCulling, ()) {
   const generators::SceneCase c = *generators::rcgen::scene_case();
   const Scene scene = generators::scene_of(c.spec);
-  ObjectSpaceHorizonCulling method(scene, ShadowRule::conservative, {256, 4});
+  MethodOptions options;
+  options.horizon_bins = 256;
+  options.quadtree_leaf_size = 4;
+  ObjectSpaceHorizonCulling method(scene, ShadowRule::conservative, options);
   RC_ASSERT(method.quadtree().check_invariants(scene) == "");
   (void)method.cull(c.camera);
   RC_ASSERT(method.horizon().check_invariants() == "");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "core/errors.hpp"
@@ -186,6 +187,69 @@ void MethodFlags::add(CLI::App& app) {
   app.add_option("--delta-turn", options.delta_turn, "Guarded ΔH: turn (rad, |Δyaw|+|Δpitch|+|Δroll|) the region allows")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.5));
+  OnlineCullingOptions& o = options.online;
+  app.add_option("--online-shrink", o.shrink_pixels, "On-line image-space culling: Δ, pixels the occluders' image is eroded by (plus one)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--online-mask-size", o.mask_size, "On-line image-space culling: s, mask pixels across the horizontal field of view")
+      ->capture_default_str()
+      ->check(CLI::Range(4, 8192));
+  app.add_option("--online-leaf-size", o.leaf_size, "On-line image-space culling: ρ, most polygons in a kd-tree leaf")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 1000000u));
+  app.add_option("--online-min-distance", o.min_distance, "On-line image-space culling: D, no occluder nearer than this (m)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--online-max-speed", o.max_speed, "On-line image-space culling: V, the walker's greatest speed (m/s); stamps last δ/V")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 1e6));
+  app.add_option("--online-occluders", o.occluders, "On-line image-space culling: R, occluder polygons per critical frame")
+      ->capture_default_str()
+      ->check(CLI::Range(0u, 100000000u));
+  app.add_option("--online-mask-block", o.mask_block, "On-line image-space culling: b, each coarser mask pixel covers b x b finer ones")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 64));
+  app.add_option("--online-mask-levels", o.mask_levels, "On-line image-space culling: coarser masks above M_0 (-1: down to one pixel)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 64));
+  app.add_option("--online-priority", online_priority, "On-line image-space culling: occluder priority φ, coverage (x distance) or distance")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"coverage", "distance"}))
+      ->each([&o](const std::string& v) { o.coverage_priority = v == "coverage"; });
+  app.add_option("--online-turn", o.critical_turn, "On-line image-space culling: radians the view may turn before a critical frame")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--online-ground", o.ground_occluder, "On-line image-space culling: draw the ground plane into the occluders' image (1/0)")
+      ->capture_default_str();
+  app.add_option("--online-pixel-budget", o.pixel_budget, "On-line image-space culling: misdrawn pixels per frame it claims at most")
+      ->capture_default_str();
+}
+
+std::string MethodFlags::replay_flags() const {
+  const MethodOptions d;
+  const OnlineCullingOptions& o = options.online;
+  const OnlineCullingOptions& od = d.online;
+  std::ostringstream out;
+  // Doubles as JSON writes them: the shortest text that reads back to the same value.
+  const auto text = [](double v) { return nlohmann::json(v).dump(); };
+  if (options.horizon_bins != d.horizon_bins) out << " --horizon-bins " << options.horizon_bins;
+  if (options.quadtree_leaf_size != d.quadtree_leaf_size) out << " --leaf-size " << options.quadtree_leaf_size;
+  if (options.delta_radius != d.delta_radius) out << " --delta-radius " << text(options.delta_radius);
+  if (options.delta_height != d.delta_height) out << " --delta-height " << text(options.delta_height);
+  if (options.delta_turn != d.delta_turn) out << " --delta-turn " << text(options.delta_turn);
+  if (o.shrink_pixels != od.shrink_pixels) out << " --online-shrink " << o.shrink_pixels;
+  if (o.mask_size != od.mask_size) out << " --online-mask-size " << o.mask_size;
+  if (o.leaf_size != od.leaf_size) out << " --online-leaf-size " << o.leaf_size;
+  if (o.min_distance != od.min_distance) out << " --online-min-distance " << text(o.min_distance);
+  if (o.max_speed != od.max_speed) out << " --online-max-speed " << text(o.max_speed);
+  if (o.occluders != od.occluders) out << " --online-occluders " << o.occluders;
+  if (o.mask_block != od.mask_block) out << " --online-mask-block " << o.mask_block;
+  if (o.mask_levels != od.mask_levels) out << " --online-mask-levels " << o.mask_levels;
+  if (o.coverage_priority != od.coverage_priority) out << " --online-priority " << (o.coverage_priority ? "coverage" : "distance");
+  if (o.critical_turn != od.critical_turn) out << " --online-turn " << text(o.critical_turn);
+  if (o.ground_occluder != od.ground_occluder) out << " --online-ground " << (o.ground_occluder ? 1 : 0);
+  if (o.pixel_budget != od.pixel_budget) out << " --online-pixel-budget " << o.pixel_budget;
+  return out.str();
 }
 
 void RegionFlags::add(CLI::App& app, const std::string& default_methods) {

@@ -79,7 +79,11 @@ struct SamplingFlags {
 // The engine's tuning knobs, the same on every subcommand that runs methods.
 struct MethodFlags {
   MethodOptions options;
+  std::string online_priority = "coverage";
   void add(CLI::App& app);
+  // The flags that give `options` where they differ from the defaults (leading space each), for
+  // replay commands: an incremental method's failure replays only with the knobs it ran with.
+  std::string replay_flags() const;
 };
 
 // From-region methods along a path (thesis ch. 4): which, and the region each PVS serves.

@@ -70,7 +70,7 @@ Runner add_gate(CLI::App& app) {
     options.oracle_stride = f->oracle_stride;
     options.max_replays = 10;
     options.pixels = !f->no_pixels;
-    if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags();
+    if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags() + f->tuning.replay_flags();
     if (f->frame >= 0) {
       if (static_cast<std::size_t>(f->frame) >= path.frames.size())
         throw InputError("command line", "--frame", "is " + std::to_string(f->frame) + ", the path has " +
@@ -79,7 +79,7 @@ Runner add_gate(CLI::App& app) {
       options.first_frame = static_cast<std::size_t>(f->frame);
     }
     const std::string scene_flags = f->scene.source.replay_flags();
-    const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->camera.empty() ? f->path.replay_flags() : "",
+    const PathVerification v = f->subjects.verify(scene, f->scene.source, path, f->camera.empty() ? f->path.replay_flags() + f->tuning.replay_flags() : "",
                                                   parse_methods(f->methods), f->tuning.options, options, /*require_any=*/true);
     ReportInputs in;
     in.method_options = f->tuning.options;

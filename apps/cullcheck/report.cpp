@@ -174,7 +174,7 @@ Runner add_report(CLI::App& app) {
     options.oracle.sampling = f->sampling.sampling;
     options.oracle_stride = f->oracle_stride;
     options.pixels = !f->no_pixels;
-    options.path_replay_flags = f->path.replay_flags();
+    options.path_replay_flags = f->path.replay_flags() + f->tuning.replay_flags();
     options.snapshot_frame = f->map_frame;
     if (f->map_frame && *f->map_frame % std::max<std::size_t>(1, f->oracle_stride) != 0)
       throw InputError("flag", "map-frame", std::to_string(*f->map_frame) + " is not a frame the oracle checks (every " +
@@ -203,7 +203,7 @@ Runner add_report(CLI::App& app) {
     options.shard = f->shard;
     f->claim_options.shard = f->shard;
     ReportParts parts;
-    parts.verification = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags(), parse_methods(f->methods),
+    parts.verification = f->subjects.verify(scene, f->scene.source, path, f->path.replay_flags() + f->tuning.replay_flags(), parse_methods(f->methods),
                                             f->tuning.options, options, /*require_any=*/false);
     const PathVerification& v = parts.verification;
     f->claim_options.sampling = f->sampling.sampling;
@@ -214,7 +214,7 @@ Runner add_report(CLI::App& app) {
     in.path = &path;
     in.path_parameters_json = f->path.file.empty() ? f->path.params : "{}";
     in.coordinates = coordinates;
-    in.path_replay_flags = f->path.replay_flags();
+    in.path_replay_flags = f->path.replay_flags() + f->tuning.replay_flags();
     parts.header = report_header(in);
     parts.method_options = f->tuning.options;
     parts.map_method = f->map_method;

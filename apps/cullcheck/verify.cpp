@@ -49,7 +49,7 @@ Runner add_verify(CLI::App& app) {
     options.region_radius = f->regions.radius;
     options.region_turn = f->regions.turn;
     options.region_on_tiling = f->regions.placement == "tiling";
-    if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags();
+    if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags() + f->tuning.replay_flags();
     options.shard = f->shard;
     ReportParts parts;
     parts.verification = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
@@ -61,7 +61,7 @@ Runner add_verify(CLI::App& app) {
       in.path = &path;
       in.path_parameters_json = f->path.file.empty() && f->camera.empty() ? f->path.params : "{}";
       in.coordinates = coordinates;
-      in.path_replay_flags = f->camera.empty() ? f->path.replay_flags() : "--camera '" + f->camera + "'";
+      in.path_replay_flags = f->camera.empty() ? f->path.replay_flags() + f->tuning.replay_flags() : "--camera '" + f->camera + "'";
       parts.header = report_header(in);
       parts.method_options = f->tuning.options;
       nlohmann::json density;
