@@ -448,5 +448,57 @@ TEST(OnlineCullingPixels, GuardedStaysWithinItsBudgetOnGeneratedWalks) {
   EXPECT_GE(4 * remarked, cases) << "walks that reached a second critical frame";
 }
 
+// The claims ledger's counterexamples (reports/online_claims.cpp), kept: a critical frame at the
+// start camera, one sideways step inside δ, and the oracle at frame 1.
+struct StepCase {
+  std::string generator;
+  std::uint64_t seed;
+  const char* params;
+  const char* path;
+};
+std::vector<ObjectId> missed_after_step(const StepCase& c, OnlineImageSpaceCulling::Variant variant, const OnlineCullingOptions& o) {
+  const Scene scene = generators::make_city(c.generator, c.seed, nlohmann::json::parse(c.params));
+  const CameraPath path = generators::moves_path(nlohmann::json::parse(c.path));
+  OnlineImageSpaceCulling method(scene, variant, o);
+  method.set_frame(0, 0.0);
+  method.cull(path.frames[0]);
+  method.set_frame(1, 1.0 / 30);
+  const std::vector<ObjectId> pvs = method.cull(path.frames[1]).pvs;
+  const oracle::Oracle truth(scene);
+  oracle::OracleAnswer seen = truth.visible_set(path.frames[1], {});
+  std::vector<ObjectId> missed;
+  std::set_difference(seen.visible.begin(), seen.visible.end(), pvs.begin(), pvs.end(), std::back_inserter(missed));
+  std::erase_if(missed, [&](ObjectId id) { return seen.sampling && !truth.confirm_witness(seen, id, path.frames[1]).stands(); });
+  return missed;
+}
+OnlineCullingOptions single_occluder() {
+  OnlineCullingOptions o;
+  o.occluders = 1, o.leaf_size = 1, o.min_distance = 5, o.max_speed = 0.001, o.ground_occluder = false;
+  return o;
+}
+
+// Eq. (1) as printed gives δ = 2ΔD / (s tan(θ/2)): at a 30-degree field of view that is
+// 1 / tan^2(15 deg) = 13.9 times what Δ pixels subtend at the centre, and a step of 2.02 m past
+// one wall shows building 23. The corrected δ is far smaller, so the same start re-marks first.
+TEST(OnlineClaims, EquationOneAsPrintedIsRefutedByASidewaysStep) {
+  const StepCase c{"manhattan", 1001,
+                   R"({"block_size":30,"blocks_x":4,"blocks_y":4,"buildings_per_block":4,"street_width":14,"thin_fraction":0.3})",
+                   R"({"moves":[["left",2.019899284411473]],"start":{"far":100000.0,"hfov":0.5235987755982988,"near":0.1,"pitch":0.0,"position":[-49.282287699302415,-12.97727666702825,1.7],"roll":0.0,"vfov":0.39269908169872414,"yaw":0.15128485741179362}})"};
+  EXPECT_EQ(missed_after_step(c, OnlineImageSpaceCulling::Variant::published, single_occluder()), std::vector<ObjectId>{23});
+  EXPECT_EQ(missed_after_step(c, OnlineImageSpaceCulling::Variant::guarded, single_occluder()), std::vector<ObjectId>{});
+}
+
+// Fig. 5's leak: with its whole occluder set, the guarded variant (corrected δ, the step 0.065 m
+// well inside it) still hides building 0 behind the eroded union of two occluders' images.
+TEST(OnlineClaims, ShrinkingTheUnionLeaksAsFigureFiveWarns) {
+  const StepCase c{"manhattan", 1000,
+                   R"({"block_size":20,"blocks_x":5,"blocks_y":4,"buildings_per_block":4,"street_width":12,"thin_fraction":0.3})",
+                   R"({"moves":[["left",0.06522977817210512]],"start":{"far":100000.0,"hfov":1.5707963267948966,"near":0.1,"pitch":0.0,"position":[47.22131958651423,-46.7123184302231,1.7],"roll":0.0,"vfov":1.1780972450961724,"yaw":2.964030868372489}})"};
+  OnlineCullingOptions o;
+  o.leaf_size = 1, o.min_distance = 5, o.max_speed = 0.001;
+  const std::vector<ObjectId> missed = missed_after_step(c, OnlineImageSpaceCulling::Variant::guarded, o);
+  EXPECT_TRUE(std::find(missed.begin(), missed.end(), ObjectId{0}) != missed.end());
+}
+
 }  // namespace
 }  // namespace cullcheck

@@ -15,7 +15,7 @@ namespace cullcheck {
 using nlohmann::json;
 
 const std::vector<std::string>& report_section_names() {
-  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
+  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
   return names;
 }
 

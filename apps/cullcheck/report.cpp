@@ -25,6 +25,8 @@
 #include "reports/report_parts.hpp"
 #include "reports/scaling.hpp"
 #include "reports/shrinking_claims.hpp"
+#include "reports/online_claims.hpp"
+#include "reports/online_culling.hpp"
 #include "reports/table_4_1.hpp"
 #include "reports/vbaoi.hpp"
 #include "reports/verification.hpp"
@@ -38,6 +40,8 @@ Runner add_report(CLI::App& app) {
     PathFlags path;
     SamplingFlags sampling;
     MethodFlags tuning;
+    bool online_table = false;
+    OnlineTableOptions online_table_options;
     RegionFlags regions;
     std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
     std::optional<std::size_t> map_frame;
@@ -121,6 +125,20 @@ Runner add_report(CLI::App& app) {
   sub->add_flag("--table-4-1", f->table_41,
                    "Also reproduce thesis Table 4.1 on its plaza-crossing walk (Methods 1-3 at 60 and 90 degrees, "
                    "region radius --region-radius, oracle every --oracle-stride frames), into report.json's \"table_4_1\"");
+  sub->add_flag("--online-table", f->online_table,
+                "Also measure on-line image-space culling as Wang et al. 2001 did: Table 1 on four cities (3.6k-436k polygons, "
+                "--online-table-frames each), the Δ x s sweep, misdrawn pixels, and a --online-long-frames walk, into "
+                "report.json's \"online_culling\"");
+  sub->add_option("--online-table-frames", f->online_table_options.frames, "Street-walk frames per city for --online-table")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  sub->add_option("--online-long-frames", f->online_table_options.long_frames, "Frames of --online-table's long walk (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10000000));
+  sub->add_option("--online-table-grids", f->online_table_options.grids,
+                  "Cities of --online-table: blocks each way (20 lots a block; default 6,17,33,66); the sweeps use the third")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 400));
   sub->add_flag("--view-cells", f->view_cells,
                    "Also compute the from-region PVS of every navigable region (street or free-space cell) with each region "
                    "method and sampling, "
@@ -191,7 +209,7 @@ Runner add_report(CLI::App& app) {
     // The sections this run asks for, in report order: the j-th is shard j mod N's.
     std::vector<std::string> asked;
     const std::map<std::string, bool> wanted = {
-        {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41},
+        {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41}, {"online_culling", f->online_table},
         {"vbaoi", vbaoi_scene.has_value()},                {"scaling", !f->scaling_grids.empty()}, {"fuzz", !f->fuzz.subject.empty()},
         {"soak", f->soak.budget > 0},                      {"benchmarks", !f->benchmark_json.empty()}};
     for (const std::string& name : report_section_names())
@@ -219,7 +237,8 @@ Runner add_report(CLI::App& app) {
     parts.method_options = f->tuning.options;
     parts.map_method = f->map_method;
     parts.map_frame = f->map_frame;
-    for (auto search : {check_shadow_elevation_rule, check_image_space_pitch_roll, check_delta_horizon_claims, check_shrinking_claims})
+    for (auto search : {check_shadow_elevation_rule, check_image_space_pitch_roll, check_delta_horizon_claims, check_shrinking_claims,
+                        check_online_claims})
       for (ClaimCheck& c : search(f->claim_options)) parts.searched_claims.push_back(std::move(c));
     if (mine("region_sweep")) {
       parts.sections["region_sweep"] =
@@ -239,6 +258,12 @@ Runner add_report(CLI::App& app) {
       t.oracle.sampling = f->sampling.sampling;
       parts.sections["table_4_1"] = table_4_1(t, f->tuning.options);
       std::cout << table_4_1_text(parts.sections["table_4_1"]);
+    }
+    if (mine("online_culling")) {
+      f->online_table_options.sweep_city = std::min<std::size_t>(2, f->online_table_options.grids.size() - 1);
+      f->online_table_options.pixel_threads = f->sampling.sampling.threads;
+      parts.sections["online_culling"] = online_culling_table(f->online_table_options, f->tuning.options);
+      std::cout << online_culling_text(parts.sections["online_culling"]);
     }
     if (f->view_cells) {  // every shard: its share of the cells
       f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;
