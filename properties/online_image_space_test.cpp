@@ -322,6 +322,46 @@ TEST(OnlineCulling, DeltaZeroMarksEveryFrameAndStillCulls) {
   }
 }
 
+// Section 6: deleting the occluder makes the next frame critical and shows what it hid; an
+// object inserted where the tree's nodes carry stamps is sent, not hidden untested.
+TEST(OnlineCulling, DynamicScenesDeleteAnOccluderAndInsertBehindIt) {
+  const Scene scene = slab_and_block();
+  OnlineCullingOptions o = fine_leaves();
+  o.occluders = 3;  // the leaf of the slab's front wall (its anchor holds three polygons): the block is no occluder
+  OnlineImageSpaceCulling method(scene, OnlineImageSpaceCulling::Variant::published, o);
+  method.set_frame(0, 0.0);
+  EXPECT_EQ(method.cull(walker_at(0)).pvs, std::vector<ObjectId>{0});
+  // A new building right behind the block, inside the stamped nodes' region.
+  Building late = one_box_scene({{{{210, -2}, {214, 2}}, 10.0}}).buildings[0];
+  late.id = 7;
+  method.insert_object(late);
+  EXPECT_THROW(method.insert_object(late), std::invalid_argument);
+  method.set_frame(1, 0.001);
+  std::vector<ObjectId> pvs = method.cull(walker_at(0)).pvs;
+  EXPECT_TRUE(std::binary_search(pvs.begin(), pvs.end(), ObjectId{7}));  // the leaf it joined lost its stamp
+  EXPECT_EQ(method.last_frame().critical, CriticalReason::none);
+  // The block was never an occluder: deleting it is no critical frame.
+  method.erase_object(1);
+  method.set_frame(2, 0.002);
+  pvs = method.cull(walker_at(0)).pvs;
+  EXPECT_TRUE(std::binary_search(pvs.begin(), pvs.end(), ObjectId{7}));
+  EXPECT_FALSE(std::binary_search(pvs.begin(), pvs.end(), ObjectId{1}));
+  EXPECT_EQ(method.last_frame().critical, CriticalReason::none);
+  // The slab was: deleting it re-marks, and building 7 has nothing in front of it any more.
+  method.erase_object(0);
+  EXPECT_THROW(method.erase_object(0), std::invalid_argument);
+  method.set_frame(3, 0.003);
+  EXPECT_EQ(method.cull(walker_at(0)).pvs, std::vector<ObjectId>{7});
+  EXPECT_EQ(method.last_frame().critical, CriticalReason::occluder_deleted);
+  // Put the slab back: it is sent at once, and hides building 7 from the next critical frame on.
+  method.insert_object(scene.buildings[0]);
+  method.set_frame(4, 0.004);
+  EXPECT_EQ(method.cull(walker_at(0)).pvs, (std::vector<ObjectId>{0, 7}));
+  method.set_frame(5, 100.0);
+  EXPECT_EQ(method.cull(walker_at(0)).pvs, std::vector<ObjectId>{0});
+  EXPECT_EQ(method.last_frame().critical, CriticalReason::expired);
+}
+
 TEST(OnlineCulling, RefusesCamerasItsPlanarMaskCannotHold) {
   const Scene scene = slab_and_block();
   OnlineImageSpaceCulling method(scene, OnlineImageSpaceCulling::Variant::published);

@@ -58,7 +58,44 @@ std::string to_string(CriticalReason reason) {
 
 OnlineImageSpaceCulling::OnlineImageSpaceCulling(const Scene& scene, Variant variant, const OnlineCullingOptions& options)
     : variant_(variant), options_((check(options), options)), polygons_(online::scene_polygons(scene)),
-      tree_(polygons_, options.leaf_size), object_frame_(polygons_.ids.size(), 0) {}
+      tree_(polygons_, options.leaf_size), object_frame_(polygons_.ids.size(), 0), alive_object_(polygons_.ids.size(), 1),
+      occluder_(polygons_.size(), 0) {
+  for (std::uint32_t i = 0; i < polygons_.ids.size(); ++i) object_index_[polygons_.ids[i]] = i;
+}
+
+void OnlineImageSpaceCulling::add_object(ObjectId id, const std::function<void(std::uint32_t)>& append) {
+  if (const auto at = object_index_.find(id); at != object_index_.end() && alive_object_[at->second])
+    throw std::invalid_argument(name() + ": insert_object: object " + std::to_string(id) + " is already in the scene");
+  const auto index = static_cast<std::uint32_t>(polygons_.ids.size());
+  const std::size_t first = polygons_.size();
+  append(index);
+  polygons_.ids.push_back(id);
+  object_index_[id] = index;
+  object_frame_.push_back(0);
+  alive_object_.push_back(1);
+  occluder_.resize(polygons_.size(), 0);
+  for (std::size_t p = first; p < polygons_.size(); ++p) tree_.insert(static_cast<std::uint32_t>(p));
+}
+
+void OnlineImageSpaceCulling::insert_object(const Building& building) {
+  add_object(building.id, [&](std::uint32_t index) { online::append_building(building, index, polygons_); });
+}
+
+void OnlineImageSpaceCulling::insert_object(const MeshObject& mesh) {
+  add_object(mesh.id, [&](std::uint32_t index) { online::append_mesh(mesh, index, polygons_); });
+}
+
+void OnlineImageSpaceCulling::erase_object(ObjectId id) {
+  const auto at = object_index_.find(id);
+  if (at == object_index_.end() || !alive_object_[at->second])
+    throw std::invalid_argument(name() + ": erase_object: object " + std::to_string(id) + " is not in the scene");
+  alive_object_[at->second] = 0;
+  for (std::uint32_t p = 0; p < polygons_.size(); ++p) {  // O(n) per deletion; dynamic scenes change rarely
+    if (polygons_.object[p] != at->second || !tree_.alive(p)) continue;
+    tree_.erase(p);
+    occluder_deleted_ = occluder_deleted_ || occluder_[p];
+  }
+}
 
 std::string OnlineImageSpaceCulling::unsupported_camera(const Camera& camera) const {
   if (camera.orthographic() || camera.omnidirectional())
@@ -83,6 +120,7 @@ double OnlineImageSpaceCulling::delta_for(const Camera& camera, double distance)
 
 void OnlineImageSpaceCulling::clear_stamps() {
   for (auto& node : tree_.nodes()) node.stamp = -std::numeric_limits<double>::infinity();
+  std::fill(occluder_.begin(), occluder_.end(), 0);
 }
 
 void OnlineImageSpaceCulling::mark(const Camera& camera, OnlineFrame& frame) {
@@ -100,7 +138,7 @@ void OnlineImageSpaceCulling::mark(const Camera& camera, OnlineFrame& frame) {
   frame.occluder_polygons = chosen.polygons.size();
   start = Clock::now();
   online::DepthImage depth(plane);
-  for (std::uint32_t p : chosen.polygons) depth.draw(polygons_.polygon(p), polygons_.vertex_count(p));
+  for (std::uint32_t p : chosen.polygons) depth.draw(polygons_.polygon(p), polygons_.vertex_count(p)), occluder_[p] = 1;
   if (options_.ground_occluder) depth.draw_ground(camera.far);
   frame.draw_ms = ms_since(start);
   anchor_ = camera;
@@ -155,9 +193,14 @@ CullResult OnlineImageSpaceCulling::cull(const Camera& camera) {
   frame.time = time_;
   const ViewVolume volume(camera);
   if (!anchored_) frame.critical = CriticalReason::first;
+  else if (occluder_deleted_) frame.critical = CriticalReason::occluder_deleted;  // (iii)
   else if (variant_ == Variant::guarded && length(camera.position - anchor_.position) > anchor_delta_) frame.critical = CriticalReason::left_ball;
   else if (time_ >= anchor_stamp_) frame.critical = CriticalReason::expired;
   else if (turn_between(camera, anchor_) > options_.critical_turn) frame.critical = CriticalReason::turned;
+  if (occluder_deleted_) {  // stamps made with it may hide what it no longer hides
+    clear_stamps();
+    occluder_deleted_ = false;
+  }
   if (frame.critical != CriticalReason::none) {
     // The guarded variant keeps only the newest marking: an older one's ball may no longer hold the eye.
     if (variant_ == Variant::guarded) clear_stamps();

@@ -21,12 +21,19 @@
 //    B_δ of the critical frame's eye, whatever the clock says, so a walker faster than V cannot
 //    outrun the stamps; only the latest critical frame's stamps are in force.
 //
+// Dynamic scenes (section 6, "lazy"): insert_object adds an object's polygons to the kd-tree
+// (the nodes on their way lose their stamps, so nothing new is hidden untested); erase_object
+// removes them, and when one of them served as an occluder since the stamps were last cleared,
+// every stamp is dropped and the next query is a critical frame (iii).
+//
 // Time comes from set_frame (seconds along the path). A query without set_frame starts a new
 // path: every stamp is dropped and the frame is critical.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "engine/method.hpp"
@@ -69,6 +76,12 @@ class OnlineImageSpaceCulling final : public CullingMethod {
   void set_frame(std::size_t frame, double time_seconds) override;
   CullResult cull(const Camera& camera) override;
 
+  // Section 6. insert_object throws std::invalid_argument when the id is already in the scene;
+  // erase_object when it is not.
+  void insert_object(const Building& building);
+  void insert_object(const MeshObject& mesh);
+  void erase_object(ObjectId id);
+
   // δ for an occluder at `distance` under this variant's reading of Eq. (1).
   double delta_for(const Camera& camera, double distance) const;
   const OnlineFrame& last_frame() const { return last_; }
@@ -80,6 +93,7 @@ class OnlineImageSpaceCulling final : public CullingMethod {
  private:
   void mark(const Camera& camera, OnlineFrame& frame);
   void clear_stamps();
+  void add_object(ObjectId id, const std::function<void(std::uint32_t)>& append);
 
   Variant variant_;
   OnlineCullingOptions options_;
@@ -92,6 +106,10 @@ class OnlineImageSpaceCulling final : public CullingMethod {
   double anchor_delta_ = 0.0;
   double anchor_stamp_ = 0.0;
   std::vector<std::uint32_t> object_frame_;  // last query each object was sent in (dedup)
+  std::unordered_map<ObjectId, std::uint32_t> object_index_;  // id -> index into polygons_.ids
+  std::vector<char> alive_object_;
+  std::vector<char> occluder_;   // per polygon: drawn into a mask since the stamps were last cleared
+  bool occluder_deleted_ = false;
   std::uint32_t query_ = 0;
   bool measure_frustum_ = false;
   OnlineFrame last_;

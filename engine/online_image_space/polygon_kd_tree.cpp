@@ -90,6 +90,11 @@ void PolygonKdTree::insert(std::uint32_t polygon) {
     Node& node = nodes_[std::size_t(n)];
     node.box.extend(b.lo), node.box.extend(b.hi);
     ++node.count;
+    // Its box grew, so its stamp no longer holds; the children's boxes were behind the mask as
+    // part of it, so they take the stamp and only the one on the way down loses it next.
+    if (!node.leaf())
+      for (std::int32_t c : node.child) nodes_[std::size_t(c)].stamp = std::max(nodes_[std::size_t(c)].stamp, node.stamp);
+    node.stamp = -std::numeric_limits<double>::infinity();
     if (node.leaf()) break;
     n = node.child[coordinate(anchor, node.axis) < node.split ? 0 : 1];
   }

@@ -6,7 +6,9 @@
 //
 // Splitter: the median anchor along the longer side of the anchors' extent ("bisect the points").
 // Dynamic scenes (section 6): insertion descends by the splitters to a leaf, grows the boxes on
-// its way and splits a leaf that reaches 2ρ + 1 polygons; deletion is lazy, removing the polygon
+// its way, drops their time stamps (a grown box was never tested against a mask; a stamp moves
+// down to the child off the way, whose box did not grow) and splits a
+// leaf that reaches 2ρ + 1 polygons; deletion is lazy, removing the polygon
 // from its leaf and the counts but leaving the boxes as they were (still bounding, only looser).
 // Leaves keep their polygons sorted, so a tree does not depend on the standard library's sort.
 #pragma once
