@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -418,6 +419,16 @@ std::string path_to_json_text(const CameraPath& path) {
               {"frames", std::move(frames)}};
   if (path.coordinates) doc["coordinates"] = *path.coordinates == CoordinateFrame::world ? "world" : "local";
   if (path.origin) doc["origin"] = {number(path.origin->x), number(path.origin->y)};
+  if (!path.events.empty()) {
+    json events = json::array();
+    for (const SceneEvent& e : path.events) {
+      json event = {{"frame", e.frame}};
+      if (!e.appear.empty()) event["appear"] = e.appear;
+      if (!e.vanish.empty()) event["vanish"] = e.vanish;
+      events.push_back(std::move(event));
+    }
+    doc["events"] = std::move(events);
+  }
   return doc.dump() + "\n";
 }
 
@@ -436,6 +447,33 @@ CameraPath path_from_json_text(const std::string& text) {
     const std::string object = "path frame " + std::to_string(i);
     reject_frame_keys(frames[i], object, "belongs to the whole path (its top level), not to one frame");
     path.frames.push_back(camera_from(frames[i], object));
+  }
+  if (auto it = doc.find("events"); it != doc.end()) {
+    if (!it->is_array()) throw InputError("path", "events", "must be an array of {\"frame\": N, \"appear\": [ids], \"vanish\": [ids]}");
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const json& e = (*it)[i];
+      const std::string object = "path event " + std::to_string(i);
+      if (!e.is_object()) throw InputError(object, "(event)", "must be an object");
+      for (const auto& [key, value] : e.items())
+        if (key != "frame" && key != "appear" && key != "vanish") throw InputError(object, key, "is not a field of an event (frame, appear, vanish)");
+      SceneEvent event;
+      const json& frame = member(e, "frame", object);
+      if (!frame.is_number_unsigned()) throw InputError(object, "frame", "must be a frame number (an integer >= 0)");
+      event.frame = frame.get<std::size_t>();
+      for (const char* key : {"appear", "vanish"}) {
+        auto& ids = std::string(key) == "appear" ? event.appear : event.vanish;
+        if (auto list = e.find(key); list != e.end()) {
+          if (!list->is_array()) throw InputError(object, key, "must be an array of object ids");
+          for (const json& id : *list) {
+            if (!id.is_number_unsigned() || id.get<std::uint64_t>() > 0xffffffffu) throw InputError(object, key, "holds " + id.dump() + ", not an object id");
+            ids.push_back(id.get<ObjectId>());
+          }
+          std::sort(ids.begin(), ids.end());
+          if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) throw InputError(object, key, "names an object twice");
+        }
+      }
+      path.events.push_back(std::move(event));
+    }
   }
   return path;
 }

@@ -58,6 +58,15 @@ class CullingMethod {
   // Called before cull() with the frame's index along the path and its time in seconds, for
   // methods that are told (outside subjects); built-in methods ignore it.
   virtual void set_frame(std::size_t /*frame*/, double /*time_seconds*/) {}
+  // Dynamic scenes (a path's scene timeline, core/scene_timeline.hpp): from the next query on,
+  // the objects of `present` are the scene; `appeared` and `vanished` say what changed. A method
+  // that follows changes in place returns true (on-line image-space culling: section 6's kd-tree
+  // updates); the default returns false and the caller builds the method anew on `present`,
+  // which must then outlive it.
+  virtual bool update_scene(const Scene& /*present*/, const std::vector<ObjectId>& /*appeared*/,
+                            const std::vector<ObjectId>& /*vanished*/) {
+    return false;
+  }
   // Why this method cannot answer for `camera` (empty when it can). Methods built on an
   // occlusion horizon work from one eye point, so the default refuses orthographic cameras;
   // frustum culling and outside subjects take every camera. A caller skips such a frame and

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/errors.hpp"
 #include "engine/method.hpp"
 #include "engine/online_image_space/occluder_selection.hpp"
 #include "engine/online_image_space/occlusion_mask.hpp"
@@ -20,6 +21,7 @@
 #include "generators/rapidcheck_gens.hpp"
 #include "oracle/oracle.hpp"
 #include "properties/property_run.hpp"
+#include "reports/verification.hpp"
 
 namespace cullcheck {
 namespace {
@@ -360,6 +362,42 @@ TEST(OnlineCulling, DynamicScenesDeleteAnOccluderAndInsertBehindIt) {
   method.set_frame(5, 100.0);
   EXPECT_EQ(method.cull(walker_at(0)).pvs, std::vector<ObjectId>{0});
   EXPECT_EQ(method.last_frame().critical, CriticalReason::expired);
+}
+
+// A path's scene timeline reaches every method and the oracle alike: the slab vanishes at frame 2
+// and comes back at frame 4. The oracle sees the block only while the slab is gone, every method
+// keeps it then (frustum culling and OH(OS) rebuilt on the present scene, online_is updated in
+// place, its frame 2 critical), and nothing is a violation.
+TEST(OnlineCulling, AScenesTimelineReachesEveryMethodAndTheOracle) {
+  const Scene scene = slab_and_block();
+  CameraPath path;
+  for (int f = 0; f < 6; ++f) path.frames.push_back(walker_at(0.01 * f));
+  path.events = {{2, {}, {0}}, {4, {0}, {}}};
+  VerificationOptions options;
+  options.pixels = true;
+  options.measure_bare_embree = false;
+  MethodOptions method_options;
+  method_options.online = fine_leaves();
+  const std::vector<std::string> names{"frustum", "oh_os_conservative", "online_is", "online_is_guarded"};
+  const PathVerification v = verify_path(scene, SceneSource{}, path, names, method_options, options);
+  ASSERT_EQ(v.checked_visible.size(), 6u);
+  for (std::size_t f = 0; f < 6; ++f) {
+    const bool slab_gone = f == 2 || f == 3;
+    EXPECT_EQ(v.checked_visible[f], slab_gone ? std::vector<ObjectId>{1} : std::vector<ObjectId>{0}) << "frame " << f;
+  }
+  for (const MethodRun& run : v.runs) {
+    SCOPED_TRACE(run.method);
+    EXPECT_EQ(run.violation_count, 0u);
+    EXPECT_EQ(run.misdrawn_total, 0u);
+    EXPECT_EQ(run.pvs_size[2], 1.0);  // the block alone
+    // The slab back: OH(OS) (rebuilt) hides the block at once; frustum culling never does; on-line
+    // culling sends the slab at once and hides the block from its next critical frame on.
+    EXPECT_EQ(run.pvs_size[4], run.method == "oh_os_conservative" ? 1.0 : 2.0);
+  }
+  // An outside subject cannot follow the timeline yet: a clear error, not a wrong answer.
+  std::vector<MethodUnderTest> outside;
+  outside.push_back({make_method("frustum", scene), nullptr, true});
+  EXPECT_THROW(verify_path(scene, SceneSource{}, path, outside, method_options, options), InputError);
 }
 
 TEST(OnlineCulling, RefusesCamerasItsPlanarMaskCannotHold) {

@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
+#include "core/scene_timeline.hpp"
 
 namespace cullcheck {
 namespace {
@@ -109,6 +110,71 @@ TEST(SceneIo, CameraValidationNamesTheField) {
   EXPECT_EQ(field_of(R"({"position":[0,0,1],"near":5,"far":1})"), "far");
   EXPECT_EQ(field_of(R"({"position":[0,"x",1]})"), "position[1]");
   EXPECT_EQ(field_of(R"({"position":[0,0,1],"hfov":6.283185307179586})"), "(accepted)");
+}
+
+}  // namespace
+}  // namespace cullcheck
+
+namespace cullcheck {
+namespace {
+
+// A path's scene timeline: read, written back the same, and checked against its scene.
+TEST(SceneIo, PathEventsRoundTripAndAreCheckedAgainstTheScene) {
+  const std::string text =
+      R"({"format":"cullcheck-path","version":1,"kind":"k","seed":0,"frames_per_second":30,"frames":[{"position":[0,0,1.7]},{"position":[1,0,1.7]},{"position":[2,0,1.7]}],)"
+      R"("events":[{"frame":1,"vanish":[2,0]},{"frame":2,"appear":[0,5]}]})";
+  const CameraPath path = path_from_json_text(text);
+  ASSERT_EQ(path.events.size(), 2u);
+  EXPECT_EQ(path.events[0].frame, 1u);
+  EXPECT_EQ(path.events[0].vanish, (std::vector<ObjectId>{0, 2}));  // sorted
+  EXPECT_EQ(path.events[1].appear, (std::vector<ObjectId>{0, 5}));
+  EXPECT_EQ(path_from_json_text(path_to_json_text(path)).events, path.events);
+  EXPECT_EQ(absent_at_start(path), (std::set<ObjectId>{5}));  // 5 appears first: absent before frame 2
+  Scene scene;
+  for (ObjectId id : {0u, 2u, 5u}) {
+    Building b;
+    b.id = id;
+    b.footprint = {{10.0 * id, 0}, {10.0 * id + 5, 0}, {10.0 * id + 5, 5}, {10.0 * id, 5}};
+    b.height = 10;
+    finish_building(b);
+    scene.buildings.push_back(b);
+  }
+  EXPECT_NO_THROW(validate_timeline(path, scene, 3));
+  EXPECT_EQ(present_scene(scene, {0, 5}).ids(), std::vector<ObjectId>{2});
+  const auto problem = [&](CameraPath p, std::size_t frames = 3) {
+    try {
+      validate_timeline(p, scene, frames);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(problem(path, 2), "path event 1: field 'frame': 2 is past the path's 2 frames");
+  CameraPath twice = path;
+  twice.events[1].frame = 1;
+  EXPECT_EQ(problem(twice), "path event 1: field 'frame': 1 is not after the previous event's frame 1");
+  CameraPath unknown = path;
+  unknown.events[0].vanish = {7};
+  EXPECT_EQ(problem(unknown), "path event 0: field 'vanish': object 7 is not in the scene (a timeline's objects must all be in it)");
+  CameraPath again = path;  // 2 vanished at frame 1
+  again.events[1].vanish = {2};
+  EXPECT_EQ(problem(again), "path event 1: field 'vanish': object 2 is already absent");
+  CameraPath empty = path;
+  empty.events[0].vanish.clear();
+  EXPECT_EQ(problem(empty), "path event 0: field '(event)': makes nothing appear or vanish");
+  const auto parse_error = [](const std::string& events) {
+    try {
+      path_from_json_text(R"({"format":"cullcheck-path","frames_per_second":30,"frames":[{"position":[0,0,1.7]}],"events":)" + events + "}");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(parse_error(R"([{"frame":0,"vanish":[1,1]}])"), "path event 0: field 'vanish': names an object twice");
+  EXPECT_EQ(parse_error(R"([{"frame":-1,"vanish":[1]}])"), "path event 0: field 'frame': must be a frame number (an integer >= 0)");
+  EXPECT_EQ(parse_error(R"([{"frame":0,"hide":[1]}])"), "path event 0: field 'hide': is not a field of an event (frame, appear, vanish)");
+  EXPECT_EQ(parse_error(R"([{"frame":0,"vanish":["a"]}])"), "path event 0: field 'vanish': holds \"a\", not an object id");
+  EXPECT_EQ(parse_error(R"({})"), R"(path: field 'events': must be an array of {"frame": N, "appear": [ids], "vanish": [ids]})");
 }
 
 }  // namespace

@@ -1,9 +1,14 @@
 #include "reports/verification.hpp"
+
+#include "core/errors.hpp"
+#include "core/scene_timeline.hpp"
 #include "core/progress.hpp"
 
 #include "engine/shrinking/circle_tiling.hpp"
 
 #include <algorithm>
+#include <deque>
+#include <set>
 #include <chrono>
 #include <cmath>
 #include <iterator>
@@ -210,7 +215,41 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   std::size_t reference = n;
   for (std::size_t m = 0; m < n; ++m)
     if (out.runs[m].method == options.reference_method) reference = m;
-  const oracle::Oracle truth(scene);
+  // The scene timeline (core/scene_timeline.hpp): the objects absent now and the scenes of the
+  // present ones, kept while a rebuilt method or the oracle refers to them.
+  std::set<ObjectId> absent;
+  std::deque<Scene> present_scenes;
+  std::unique_ptr<oracle::Oracle> oracle_now = std::make_unique<oracle::Oracle>(scene);
+  const oracle::Oracle* truth = oracle_now.get();
+  const auto change_scene = [&](const std::vector<ObjectId>& appeared, const std::vector<ObjectId>& vanished) {
+    for (ObjectId id : vanished) absent.insert(id);
+    for (ObjectId id : appeared) absent.erase(id);
+    present_scenes.push_back(present_scene(scene, absent));
+    const Scene& present = present_scenes.back();
+    for (std::size_t m = 0; m < n; ++m) {
+      if (engines[m].method->update_scene(present, appeared, vanished)) continue;
+      if (engines[m].outside)
+        throw InputError("path", "events", out.runs[m].method + " cannot follow a scene timeline: the subject protocol has no scene changes yet");
+      engines[m].method = make_method(out.runs[m].method, present, method_options);
+    }
+    for (std::size_t r = 0; r < region_engines.size(); ++r) {
+      region_engines[r] = make_region_method(out.regions[r].method, present, method_options);
+      current[r].reset();
+    }
+    oracle_now = std::make_unique<oracle::Oracle>(present);
+    truth = oracle_now.get();
+  };
+  std::size_t next_event = 0;
+  if (!path.events.empty()) {
+    validate_timeline(path, scene, options.first_frame + path.frames.size());
+    // The state at the first frame given: the objects absent from the start, then every event up to it.
+    std::set<ObjectId> start = absent_at_start(path);
+    for (; next_event < path.events.size() && path.events[next_event].frame <= options.first_frame; ++next_event) {
+      for (ObjectId id : path.events[next_event].vanish) start.insert(id);
+      for (ObjectId id : path.events[next_event].appear) start.erase(id);
+    }
+    if (!start.empty()) change_scene({}, std::vector<ObjectId>(start.begin(), start.end()));
+  }
   oracle::RayLog first_log;
   bool pixels = options.pixels;
   for (const MethodRun& run : out.runs) pixels = pixels || run.pixel_error_budget.has_value();
@@ -220,6 +259,10 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   for (std::size_t frame = 0; frame < path.frames.size(); ++frame) {
     const Camera& camera = path.frames[frame];
     const std::size_t index = options.first_frame + frame;  // the frame's number along the original path
+    if (next_event < path.events.size() && path.events[next_event].frame == index) {
+      change_scene(path.events[next_event].appear, path.events[next_event].vanish);
+      ++next_event;
+    }
     // Every method answers before anything is recorded, so a subject failing at this frame
     // leaves every run with the same frames.
     std::vector<std::optional<CullResult>> results(n);
@@ -284,7 +327,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       }
     if (frame % out.oracle.oracle_stride != 0 || !options.shard.owns(frame / out.oracle.oracle_stride)) continue;
     // The first ray-sampling frame's rays are logged, to time them again in a bare Embree loop.
-    oracle::OracleAnswer answer = truth.visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
+    oracle::OracleAnswer answer = truth->visible_set(camera, options.oracle, options.measure_bare_embree && first_log.rays.empty() ? &first_log : nullptr);
     ++out.oracle.frames_checked;
     out.checked_frames.push_back(index);
     out.checked_visible.push_back(answer.visible);
@@ -301,7 +344,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     std::optional<oracle::IdImage> full;
     if (pixels) {
       const auto pixel_start = std::chrono::steady_clock::now();
-      full = truth.pixels().render(camera, nullptr, options.oracle.sampling.threads);
+      full = truth->pixels().render(camera, nullptr, options.oracle.sampling.threads);
       ++out.pixels.frames;
       out.pixels.rays += full->ids.size();
       out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
@@ -318,7 +361,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       std::optional<oracle::PixelComparison> pixel;
       if (full) {
         const auto pixel_start = std::chrono::steady_clock::now();
-        pixel = truth.pixels().compare(*full, camera, pvs, options.oracle.sampling.threads);
+        pixel = truth->pixels().compare(*full, camera, pvs, options.oracle.sampling.threads);
         out.pixels.rays += pixel->misdrawn_pixels;
         out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
         run.misdrawn_pixels.push_back(static_cast<double>(pixel->misdrawn_pixels));
@@ -351,7 +394,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
           if (!std::binary_search(answer.visible.begin(), answer.visible.end(), id)) missed.push_back(id);
         std::sort(missed.begin(), missed.end());
       }
-      drop_unconfirmed(truth, answer, camera, pixel ? &*pixel : nullptr, missed, run.witness_recheck);
+      drop_unconfirmed(*truth, answer, camera, pixel ? &*pixel : nullptr, missed, run.witness_recheck);
       run.checked_frames.push_back(index);
       keep_snapshot(run, index, camera, pvs, answer, pixel ? &*pixel : nullptr, missed, options.snapshot_frame);
       if (missed.empty()) continue;
@@ -372,7 +415,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.witnessed_size.push_back(static_cast<double>(answer.visible.size()));
       run.checked_frames.push_back(index);
       std::vector<ObjectId> missed = missing_from(answer.visible, region_pvs[m]);
-      drop_unconfirmed(truth, answer, camera, nullptr, missed, run.witness_recheck);
+      drop_unconfirmed(*truth, answer, camera, nullptr, missed, run.witness_recheck);
       if (missed.empty()) continue;
       run.violation_count += missed.size();
       ++run.frames_with_violations;
@@ -385,7 +428,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     out.oracle.witness_recheck += answer.witness_recheck;
   }
   for (MethodRun& run : out.runs) settle_violations(run);
-  if (options.measure_bare_embree && !first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth.rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
+  if (options.measure_bare_embree && !first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth->rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
   return out;
 }
 

@@ -85,6 +85,17 @@ void OnlineImageSpaceCulling::insert_object(const MeshObject& mesh) {
   add_object(mesh.id, [&](std::uint32_t index) { online::append_mesh(mesh, index, polygons_); });
 }
 
+bool OnlineImageSpaceCulling::update_scene(const Scene& present, const std::vector<ObjectId>& appeared,
+                                           const std::vector<ObjectId>& vanished) {
+  for (ObjectId id : vanished) erase_object(id);
+  for (ObjectId id : appeared) {
+    if (const Building* b = present.find(id)) insert_object(*b);
+    else if (const MeshObject* m = present.find_mesh(id)) insert_object(*m);
+    else throw std::invalid_argument(name() + ": update_scene: appeared object " + std::to_string(id) + " is not in the present scene");
+  }
+  return true;
+}
+
 void OnlineImageSpaceCulling::erase_object(ObjectId id) {
   const auto at = object_index_.find(id);
   if (at == object_index_.end() || !alive_object_[at->second])

@@ -81,6 +81,7 @@ class OnlineImageSpaceCulling final : public CullingMethod {
   void insert_object(const Building& building);
   void insert_object(const MeshObject& mesh);
   void erase_object(ObjectId id);
+  bool update_scene(const Scene& present, const std::vector<ObjectId>& appeared, const std::vector<ObjectId>& vanished) override;
 
   // δ for an occluder at `distance` under this variant's reading of Eq. (1).
   double delta_for(const Camera& camera, double distance) const;
