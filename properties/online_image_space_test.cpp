@@ -72,6 +72,30 @@ TEST(OnlineImagePlane, SquarePixelsAcrossTheFieldOfViewAndItsWidening) {
   EXPECT_NEAR(plain.smallest_pixel_angle(), (1.0 / 32) * std::sqrt(2.0) / 3.0, 1e-12);
 }
 
+// A 0.6-degree field of view widened by 0.15 rad would need a mask 50 times as wide: each
+// half-extent is capped at s pixels, and then the clip region no longer holds the view.
+TEST(OnlineImagePlane, ANarrowViewGetsACappedMaskThatSaysSo) {
+  Camera narrow = square_camera();
+  narrow.hfov = narrow.vfov = 0.01;
+  const online::ImagePlane plane(narrow, 256, 0.15, 7);
+  EXPECT_EQ(plane.width(), 2 * 256 + 14);
+  EXPECT_EQ(plane.height(), 2 * 256 + 14);
+  EXPECT_FALSE(plane.covers_view());
+  EXPECT_TRUE(online::ImagePlane(square_camera(), 64, 0.15, 7).covers_view());
+}
+
+// A roof of a hundred vertices (a round building's one convex prism) is drawn like any polygon.
+TEST(OnlineOcclusionMask, DrawsPolygonsOfManyVertices) {
+  const online::ImagePlane plane(square_camera(), 64);
+  online::DepthImage depth(plane);
+  std::vector<Vec3> disc;
+  for (int i = 0; i < 100; ++i) disc.push_back({10, 4 * std::cos(2 * kPi * i / 100), 10 + 4 * std::sin(2 * kPi * i / 100)});
+  // A disc of radius 0.4 of the plane: about pi 12.8^2 = 515 pixel centres.
+  const std::uint64_t written = depth.draw(disc.data(), 100);
+  EXPECT_GT(written, 490u);
+  EXPECT_LT(written, 540u);  // 524: the lattice count of a disc strays a few percent
+}
+
 TEST(OnlineOcclusionMask, RasterisesErodesAndTestsAWallFacingTheCamera) {
   const online::ImagePlane plane(square_camera(), 64);
   online::DepthImage depth(plane);

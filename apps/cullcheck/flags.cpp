@@ -193,7 +193,7 @@ void MethodFlags::add(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   app.add_option("--online-mask-size", o.mask_size, "On-line image-space culling: s, mask pixels across the horizontal field of view")
       ->capture_default_str()
-      ->check(CLI::Range(4, 8192));
+      ->check(CLI::Range(4, 2048));
   app.add_option("--online-leaf-size", o.leaf_size, "On-line image-space culling: ρ, most polygons in a kd-tree leaf")
       ->capture_default_str()
       ->check(CLI::Range(1u, 1000000u));

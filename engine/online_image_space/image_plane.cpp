@@ -11,8 +11,14 @@ ImagePlane::ImagePlane(const Camera& camera, int s, double turn, int guard)
   const double cap = 80.0 * kPi / 180.0;
   const double clip_h = std::tan(std::min(cap, camera.hfov / 2 + std::max(0.0, turn)));
   const double clip_v = std::tan(std::min(cap, camera.vfov / 2 + std::max(0.0, turn)));
-  width_ = 2 * static_cast<int>(std::ceil(clip_h / pixel - 1e-9)) + 2 * guard_;
-  height_ = 2 * static_cast<int>(std::ceil(clip_v / pixel - 1e-9)) + 2 * guard_;
+  // Each half-extent at most s pixels (twice the frustum's own half-width), so a narrow field of
+  // view or an extreme aspect cannot ask for a huge mask; a capped clip region no longer holds
+  // the view, and the occlusion test then refuses what crosses its edge (covers_view).
+  const double cap_pixels = std::max(1, s);
+  const double half_w = std::ceil(clip_h / pixel - 1e-9), half_h = std::ceil(clip_v / pixel - 1e-9);
+  covers_view_ = half_w <= cap_pixels && half_h <= cap_pixels;
+  width_ = 2 * static_cast<int>(std::min(half_w, cap_pixels)) + 2 * guard_;
+  height_ = 2 * static_cast<int>(std::min(half_h, cap_pixels)) + 2 * guard_;
   tan_h_ = pixel * width_ / 2;  // square pixels
   tan_v_ = pixel * height_ / 2;
 }

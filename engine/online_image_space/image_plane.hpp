@@ -34,7 +34,10 @@ class ImagePlane {
   double tan_half_h() const { return tan_h_; }
   double tan_half_v() const { return tan_v_; }
   const Vec3& eye() const { return eye_; }
-  int guard() const { return guard_; }  // the clip region is [guard, width - guard) x [guard, height - guard)
+  int guard() const { return guard_; }
+  // Whether the clip region holds the widened view (false when its size was capped: then only a
+  // box projecting wholly inside it can be judged).
+  bool covers_view() const { return covers_view_; }  // the clip region is [guard, width - guard) x [guard, height - guard)
 
   // Camera space: x right, y up, z = depth along the view direction.
   Vec3 to_camera(Vec3 p) const {
@@ -57,6 +60,7 @@ class ImagePlane {
   Vec3 eye_;
   CameraBasis basis_;
   int width_ = 0, height_ = 0, guard_ = 0;
+  bool covers_view_ = true;
   double tan_h_ = 0.0, tan_v_ = 0.0, near_ = 0.0;
 };
 

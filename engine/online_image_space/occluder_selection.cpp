@@ -43,10 +43,11 @@ class Coverage {
       x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x), y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
     }
     if (behind) x_lo = 0, y_lo = 0, x_hi = plane_.width(), y_hi = plane_.height();
-    const double cw = double(plane_.width()) / grid_, ch = double(plane_.height()) / grid_;
-    const int cx0 = std::clamp(int(x_lo / cw), 0, grid_ - 1), cx1 = std::clamp(int(x_hi / cw), 0, grid_ - 1);
-    const int cy0 = std::clamp(int(y_lo / ch), 0, grid_ - 1), cy1 = std::clamp(int(y_hi / ch), 0, grid_ - 1);
     if (x_hi < 0 || y_hi < 0 || x_lo > plane_.width() || y_lo > plane_.height()) return;
+    const double cw = double(plane_.width()) / grid_, ch = double(plane_.height()) / grid_, last = grid_ - 1;
+    // Clamped as doubles before the conversion: projections can lie far off the image.
+    const int cx0 = int(std::clamp(x_lo / cw, 0.0, last)), cx1 = int(std::clamp(x_hi / cw, 0.0, last));
+    const int cy0 = int(std::clamp(y_lo / ch, 0.0, last)), cy1 = int(std::clamp(y_hi / ch, 0.0, last));
     const double share = count / double((cx1 - cx0 + 1) * (cy1 - cy0 + 1));
     for (int cy = cy0; cy <= cy1; ++cy)
       for (int cx = cx0; cx <= cx1; ++cx) cells_[std::size_t(cy) * std::size_t(grid_) + std::size_t(cx)] += share;

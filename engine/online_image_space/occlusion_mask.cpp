@@ -10,15 +10,16 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Keeps the part of a convex camera-space polygon at depth >= near (Sutherland-Hodgman, one plane).
-int clip_to_near(const Vec3* in, int n, double near, Vec3* out) {
+int clip_to_near(const std::vector<Vec3>& in, int n, double near, std::vector<Vec3>& out) {
+  out.resize(std::size_t(2 * n));
   int m = 0;
   for (int i = 0; i < n; ++i) {
-    const Vec3 a = in[i], b = in[(i + 1) % n];
+    const Vec3 a = in[std::size_t(i)], b = in[std::size_t((i + 1) % n)];
     const bool a_in = a.z >= near, b_in = b.z >= near;
-    if (a_in) out[m++] = a;
+    if (a_in) out[std::size_t(m++)] = a;
     if (a_in != b_in) {
       const double t = (near - a.z) / (b.z - a.z);
-      out[m++] = {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, near};
+      out[std::size_t(m++)] = {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, near};
     }
   }
   return m;
@@ -40,8 +41,11 @@ DepthImage::DepthImage(const ImagePlane& plane)
     : plane_(plane), width_(plane.width()), height_(plane.height()), depth_(std::size_t(width_) * std::size_t(height_), kInfinity) {}
 
 std::uint64_t DepthImage::draw(const Vec3* vertices, std::uint32_t count) {
-  if (count < 3 || count > 64) return 0;
-  Vec3 camera[64], clipped[130];
+  if (count < 3) return 0;
+  // Scratch space kept between calls (roofs of round buildings can have many vertices).
+  thread_local std::vector<Vec3> camera, clipped;
+  thread_local std::vector<ViewPoint> p;
+  camera.resize(count);
   for (std::uint32_t i = 0; i < count; ++i) camera[i] = plane_.to_camera(vertices[i]);
   const int n = clip_to_near(camera, int(count), plane_.near(), clipped);
   if (n < 3) return 0;
@@ -61,7 +65,7 @@ std::uint64_t DepthImage::draw(const Vec3* vertices, std::uint32_t count) {
   const double w = width_, h = height_, th = plane_.tan_half_h(), tv = plane_.tan_half_v();
   const double A = normal.x * 2.0 * th / w / c, B = -normal.y * 2.0 * tv / h / c;
   const double C = (normal.z - normal.x * th + normal.y * tv) / c;
-  ViewPoint p[130];
+  p.resize(std::size_t(n));
   double x_lo = kInfinity, x_hi = -kInfinity, y_lo = kInfinity, y_hi = -kInfinity, area = 0.0;
   for (int i = 0; i < n; ++i) {
     p[i] = plane_.project(clipped[i]);
@@ -70,8 +74,11 @@ std::uint64_t DepthImage::draw(const Vec3* vertices, std::uint32_t count) {
   for (int i = 0; i < n; ++i) area += p[i].x * p[(i + 1) % n].y - p[(i + 1) % n].x * p[i].y;
   if (area == 0.0 || !std::isfinite(area)) return 0;
   const double sign = area > 0 ? 1.0 : -1.0;
-  const int i0 = std::max(0, int(std::ceil(x_lo - 0.5))), i1 = std::min(width_ - 1, int(std::floor(x_hi - 0.5)));
-  const int j0 = std::max(0, int(std::ceil(y_lo - 0.5))), j1 = std::min(height_ - 1, int(std::floor(y_hi - 0.5)));
+  // Pixel ranges clamped as doubles first: a vertex just past the near plane can project far off the image.
+  const double fi0 = std::max(0.0, std::ceil(x_lo - 0.5)), fi1 = std::min(width_ - 1.0, std::floor(x_hi - 0.5));
+  const double fj0 = std::max(0.0, std::ceil(y_lo - 0.5)), fj1 = std::min(height_ - 1.0, std::floor(y_hi - 0.5));
+  if (!(fi0 <= fi1 && fj0 <= fj1)) return 0;
+  const int i0 = int(fi0), i1 = int(fi1), j0 = int(fj0), j1 = int(fj1);
   std::uint64_t written = 0;
   for (int j = j0; j <= j1; ++j) {
     const double yc = j + 0.5;
@@ -170,6 +177,7 @@ bool OcclusionMask::occluded(const Box3& box, MaskTest* stats) const {
     nearest = std::min(nearest, c.z);
   }
   const int g = plane_.guard(), w = widths_[0], h = heights_[0];
+  if (!plane_.covers_view() && !(x_lo >= g && y_lo >= g && x_hi <= w - g && y_hi <= h - g)) return false;
   x_lo = std::max(x_lo, double(g)), y_lo = std::max(y_lo, double(g));
   x_hi = std::min(x_hi, double(w - g)), y_hi = std::min(y_hi, double(h - g));
   if (!(x_lo < x_hi && y_lo < y_hi)) return false;  // outside the clip region: not in view, nothing to mark

@@ -22,7 +22,7 @@ double turn_between(const Camera& a, const Camera& b) {
 void check(const OnlineCullingOptions& o) {
   const auto bad = [](const std::string& what) { return std::invalid_argument("online image-space culling: " + what); };
   if (o.shrink_pixels < 0 || o.shrink_pixels > 1000) throw bad("shrink_pixels (Δ) must be 0..1000");
-  if (o.mask_size < 4 || o.mask_size > 8192) throw bad("mask_size (s) must be 4..8192");
+  if (o.mask_size < 4 || o.mask_size > 2048) throw bad("mask_size (s) must be 4..2048");
   if (o.leaf_size < 1) throw bad("leaf_size (ρ) must be at least 1");
   if (!(o.min_distance >= 0.0) || !std::isfinite(o.min_distance)) throw bad("min_distance (D) must be a finite distance >= 0");
   if (!(o.max_speed > 0.0) || !std::isfinite(o.max_speed)) throw bad("max_speed (V) must be a finite speed > 0");
