@@ -90,14 +90,19 @@ std::uint64_t DepthImage::draw(const Vec3* vertices, std::uint32_t count) {
         inside = sign * ((b.x - a.x) * (yc - a.y) - (b.y - a.y) * (xc - a.x)) >= 0.0;
       }
       if (!inside) continue;
-      const double inv = std::min({A * i + B * j + C, A * (i + 1) + B * j + C, A * i + B * (j + 1) + C, A * (i + 1) + B * (j + 1) + C});
-      const double deepest = inv > 0.0 ? std::min(1.0 / inv, farthest) : farthest;
-      double& d = depth_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
-      d = std::min(d, deepest);
+      keep_deepest_corner(i, j, A, B, C, farthest);
       ++written;
     }
   }
   return written;
+}
+
+void DepthImage::keep_deepest_corner(int i, int j, double A, double B, double C, double cap) {
+  // 1/depth = A x + B y + C over the pixel's square: the deepest point is at a corner.
+  const double inv = std::min({A * i + B * j + C, A * (i + 1) + B * j + C, A * i + B * (j + 1) + C, A * (i + 1) + B * (j + 1) + C});
+  const double deepest = inv > 0.0 ? std::min(1.0 / inv, cap) : cap;
+  double& d = depth_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
+  d = std::min(d, deepest);
 }
 
 std::uint64_t DepthImage::draw_ground(double far) {
@@ -112,10 +117,7 @@ std::uint64_t DepthImage::draw_ground(double far) {
   for (int j = 0; j < height_; ++j)
     for (int i = 0; i < width_; ++i) {
       if (!(A * (i + 0.5) + B * (j + 0.5) + C > 0.0)) continue;  // the centre's ray misses the ground
-      const double inv = std::min({A * i + B * j + C, A * (i + 1) + B * j + C, A * i + B * (j + 1) + C, A * (i + 1) + B * (j + 1) + C});
-      const double deepest = inv > 0.0 ? std::min(1.0 / inv, far) : far;
-      double& d = depth_[std::size_t(j) * std::size_t(width_) + std::size_t(i)];
-      d = std::min(d, deepest);
+      keep_deepest_corner(i, j, A, B, C, far);
       ++written;
     }
   return written;

@@ -44,6 +44,10 @@ class DepthImage {
   const std::vector<double>& depth() const { return depth_; }  // +inf where nothing was drawn
 
  private:
+  // Pixel (i, j) keeps the smaller of its value and the plane's greatest depth over its square
+  // (1/depth = A x + B y + C), at most `cap`.
+  void keep_deepest_corner(int i, int j, double A, double B, double C, double cap);
+
   const ImagePlane& plane_;
   int width_, height_;
   std::vector<double> depth_;
