@@ -175,6 +175,49 @@ std::string table_4_1_section(const json& report) {
   return out + "</section>\n";
 }
 
+std::string online_culling_section(const json& report) {
+  const json& t = member(report, "online_culling");
+  if (!t.is_object()) return "";
+  std::string out =
+      "<section id=\"online-culling\"><h2>On-line image-space culling (Wang et al. 2001): Table 1 in kind</h2>\n<p class=\"note\">"
+      "Street walks on generated cities; sent = polygons (frustum culling and OH(OS) send whole buildings); CR_v and CR_o as "
+      "Fig. 14 defines them; misdrawn = pixels whose full-scene object the PVS lacks. The paper's frame rates depend on its "
+      "graphics hardware: compare the ratios.</p>\n<table>" +
+      header({"polygons", "<method", "ms median", "ms p95", "critical frames", "critical ms", "sent", "CR_v", "CR_o", "time / OH(OS)",
+              "error frames", "misdrawn"});
+  for (const json& city : member(t, "table_1"))
+    for (const json& r : member(city, "rows"))
+      out += "<tr>" + cell(count(value_of(city, "polygons"))) + cell(escape(text_of(r, "method")), "name") +
+             cell(number(value_of(r, "cull_ms_median"))) + cell(number(value_of(r, "cull_ms_p95"))) +
+             cell(r.contains("critical_frames") ? count(value_of(r, "critical_frames")) : "\u2013") +
+             cell(r.contains("critical_ms_median") ? number(value_of(r, "critical_ms_median")) : "\u2013") +
+             cell(number(value_of(r, "polygons_sent_mean"), 5)) + cell(number(value_of(r, "cr_v_mean"))) +
+             cell(number(value_of(r, "cr_o_mean"))) +
+             cell(r.contains("time_median_over_oh_os") ? number(value_of(r, "time_median_over_oh_os")) + "\u00d7" : "1\u00d7") +
+             cell(count(value_of(r, "error_frames"))) + cell(count(value_of(r, "misdrawn_pixels"))) + "</tr>\n";
+  out += "</table>\n";
+  if (t.contains("delta_sweep")) {
+    out += "<h3>The \u0394 \u00d7 s sweep (Fig. 11, 12) and the trade</h3>\n<table>" +
+           header({"<method", "\u0394", "s", "ms median", "ms p95", "sent", "critical frames", "error frames", "misdrawn / frame"});
+    for (const json& r : member(member(t, "delta_sweep"), "rows")) {
+      const json& p = member(r, "parameters");
+      out += "<tr>" + cell(escape(text_of(r, "method")), "name") +
+             cell(p.contains("shrink_pixels") ? count(value_of(p, "shrink_pixels")) : "\u2013") +
+             cell(p.contains("mask_size") ? count(value_of(p, "mask_size")) : "\u2013") + cell(number(value_of(r, "cull_ms_median"))) +
+             cell(number(value_of(r, "cull_ms_p95"))) + cell(number(value_of(r, "polygons_sent_mean"), 5)) +
+             cell(r.contains("critical_frames") ? count(value_of(r, "critical_frames")) : "\u2013") +
+             cell(count(value_of(r, "error_frames"))) + cell(number(value_of(r, "misdrawn_pixels_mean"))) + "</tr>\n";
+    }
+    out += "</table>\n";
+  }
+  if (t.contains("long_walk"))
+    for (const json& r : member(member(t, "long_walk"), "rows"))
+      out += "<p class=\"note\">Long walk, " + escape(text_of(r, "method")) + ": misdrawn pixels in " + count(value_of(r, "error_frames")) +
+             " of " + count(value_of(member(t, "long_walk"), "frames")) + " frames (the paper: 158 of 11,558 at \u0394 = 6), at most " +
+             count(value_of(r, "most_misdrawn_in_a_frame")) + " in one.</p>\n";
+  return out + "</section>\n";
+}
+
 std::string regions_section(const json& report) {
   const json& regions = member(report, "regions");
   if (!regions.is_array() || regions.empty()) return "";

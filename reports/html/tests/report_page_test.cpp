@@ -76,6 +76,25 @@ TEST(ReportPage, PlotsThePathAndTheTradeWhenTheReportHasThem) {
     EXPECT_EQ(page.find(id), std::string::npos) << id;
 }
 
+// cullcheck report --online-table's section: Table 1's rows, the sweep and the long walk.
+TEST(ReportPage, ShowsTheOnlineCullingTableWhenTheReportHasIt) {
+  json report = small_report(true);
+  EXPECT_EQ(report_page(report, {}).find("id=\"online-culling\""), std::string::npos);
+  const json row = {{"method", "online_is"}, {"cull_ms_median", 0.102}, {"cull_ms_p95", 0.133}, {"critical_frames", 20},
+                    {"critical_ms_median", 6.467}, {"polygons_sent_mean", 2667.0}, {"cr_v_mean", 0.843}, {"cr_o_mean", 0.976},
+                    {"time_median_over_oh_os", 0.39}, {"error_frames", 0}, {"misdrawn_pixels", 0},
+                    {"parameters", {{"shrink_pixels", 6}, {"mask_size", 256}}}, {"misdrawn_pixels_mean", 0.0}};
+  report["online_culling"] = {{"table_1", json::array({{{"polygons", 108900}, {"rows", json::array({row})}}})},
+                              {"delta_sweep", {{"rows", json::array({row})}}},
+                              {"long_walk", {{"frames", 10000}, {"rows", json::array({{{"method", "online_is"}, {"error_frames", 193},
+                                                                                        {"most_misdrawn_in_a_frame", 3385}}})}}}};
+  const std::string page = report_page(report, {});
+  EXPECT_NE(page.find("<td>108,900</td><td class=\"name\">online_is</td><td>0.102</td><td>0.133</td><td>20</td><td>6.47</td>"),
+            std::string::npos);
+  EXPECT_NE(page.find("Long walk, online_is: misdrawn pixels in 193 of 10,000 frames"), std::string::npos);
+  EXPECT_NE(page.find("at most 3,385 in one"), std::string::npos);
+}
+
 TEST(ReportPage, CarriesTheMapInlineOrSaysWhyNot) {
   json report = small_report(true);
   report["map"] = {{"method", "oh_os_conservative"}, {"frame", 2}, {"chosen_by", "test"}, {"pvs", {1, 2}}, {"seen", {1}},
