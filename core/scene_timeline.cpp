@@ -56,4 +56,11 @@ Scene present_scene(const Scene& scene, const std::set<ObjectId>& absent) {
   return out;
 }
 
+const Scene& PresentScenes::apply(const std::vector<ObjectId>& appear, const std::vector<ObjectId>& vanish) {
+  for (ObjectId id : vanish) absent_.insert(id);
+  for (ObjectId id : appear) absent_.erase(id);
+  kept_.push_back(present_scene(scene_, absent_));
+  return kept_.back();
+}
+
 }  // namespace cullcheck

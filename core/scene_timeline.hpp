@@ -3,6 +3,7 @@
 // objects that the oracle and the methods that cannot follow a change are rebuilt on.
 #pragma once
 
+#include <deque>
 #include <set>
 
 #include "core/camera_path.hpp"
@@ -21,5 +22,20 @@ std::set<ObjectId> absent_at_start(const CameraPath& path);
 
 // The scene without the `absent` objects (same origin and provenance).
 Scene present_scene(const Scene& scene, const std::set<ObjectId>& absent);
+
+// A walk's scene as its timeline changes it: `apply` records an event and returns the present
+// scene, kept alive (with every earlier one) as long as this object, because the methods and
+// the oracle rebuilt on it hold references to it.
+class PresentScenes {
+ public:
+  explicit PresentScenes(const Scene& scene) : scene_(scene) {}
+  const Scene& apply(const std::vector<ObjectId>& appear, const std::vector<ObjectId>& vanish);
+  const std::set<ObjectId>& absent() const { return absent_; }
+
+ private:
+  const Scene& scene_;
+  std::set<ObjectId> absent_;
+  std::deque<Scene> kept_;
+};
 
 }  // namespace cullcheck

@@ -118,7 +118,8 @@ CameraPath fly_through(const Scene& scene, const FlyThroughParams& fly, std::uin
 // InputError unless the scene has a plaza (plaza or default generator).
 CameraPath plaza_crossing(const Scene& scene, const PlazaCrossingParams& walk);
 
-// Dispatch by kind ("street_walk", "fly_through"); `params` overlays the kind's defaults.
+// Dispatch by kind (camera_path_kinds()); `params` overlays the kind's defaults. Any kind also
+// takes "timeline": {"every", "churn", "late"} (scene_timeline_gen.hpp), a seeded scene timeline.
 const std::vector<std::string>& camera_path_kinds();
 CameraPath make_camera_path(const std::string& kind, const Scene& scene, std::uint64_t seed, const nlohmann::json& params);
 

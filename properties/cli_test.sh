@@ -192,6 +192,16 @@ walk=(--path-params '{"frames":12}')
 json_field() {  # file python-expression-on-d
   python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"
 }
+# A generated scene timeline (path parameter "timeline"): verify applies it, and --path-output
+# writes its events; out of range it is refused, naming the field.
+expect_exit 0 "verify with a generated timeline" "$cc" verify --generator manhattan --params '{"blocks_x":2,"blocks_y":2}' \
+  --path-params '{"frames":40,"timeline":{"every":10,"churn":0.2}}' --method online_is_guarded,oh_os_conservative
+expect_exit 0 "generate a path with a timeline" "$cc" generate --generator manhattan --params '{"blocks_x":2,"blocks_y":2}' \
+  -o "$work/tl.json" --path-params '{"frames":40,"timeline":{"every":10,"churn":0.2}}' --path-output "$work/tl-path.json"
+[ "$(json_field "$work/tl-path.json" "[e['frame'] for e in d['events']]")" = "[10, 20, 30]" ] && pass || fail "generate: the path's timeline was not written"
+expect_exit 2 "timeline out of range" "$cc" verify --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' \
+  --path-params '{"frames":4,"timeline":{"every":0}}'
+expect_error_names "timeline out of range" "every"
 # The first violation printed, as "METHOD OBJECT FRAME" (gate says "object", verify "building").
 first_miss() {
   sed -n 's/^violation: \([^ ]*\) culled [a-z]* \([0-9]*\) at frame \([0-9]*\) .*/\1 \2 \3/p' "$1" | head -1

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
+#include "core/scene_timeline.hpp"
 #include "generators/angles.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
@@ -404,6 +405,31 @@ TEST(StreetWalk, DeterministicRoundTripsAndReadsStreetsFromTheScene) {
   EXPECT_THROW(make_camera_path("street_walk", scene, 1, {{"frames", 0}}), InputError);
   EXPECT_THROW(make_camera_path("teleport", scene, 1, json::object()), InputError);
   EXPECT_EQ(make_camera_path("street_walk", scene, 11, json::object()).frames.size(), 1800u);
+}
+
+// A path's "timeline" parameter: events every `every` frames, each bringing back what the last
+// one removed and removing a fresh `churn` share; `late` objects absent from the start. Pinned,
+// valid against the scene, carried by the path JSON, and refused out of range.
+TEST(SceneTimeline, SeededEventsEveryFewFramesThatUndoTheLastOne) {
+  const Scene scene = make_city("manhattan", 3, {{"blocks_x", 3}, {"blocks_y", 3}});
+  ASSERT_EQ(scene.buildings.size(), 54u);
+  const json params = {{"frames", 100}, {"timeline", {{"every", 30}, {"churn", 0.1}, {"late", 0.05}}}};
+  const CameraPath path = make_camera_path("street_walk", scene, 5, params);
+  ASSERT_EQ(path.frames.size(), 100u);
+  ASSERT_EQ(path.events.size(), 3u);
+  EXPECT_EQ(path.events[0].frame, 30u);
+  EXPECT_EQ(path.events[2].frame, 90u);
+  EXPECT_EQ(path.events[0].appear, (std::vector<ObjectId>{50, 51, 53}));  // the late 5% of 54, rounded up
+  EXPECT_EQ(path.events[0].vanish, (std::vector<ObjectId>{10, 11, 26, 29, 47}));  // 10% of the 51 present
+  for (std::size_t e = 1; e < path.events.size(); ++e) EXPECT_EQ(path.events[e].appear, path.events[e - 1].vanish);
+  EXPECT_NO_THROW(validate_timeline(path, scene, path.frames.size()));
+  EXPECT_EQ(make_camera_path("street_walk", scene, 5, params).events, path.events);
+  EXPECT_NE(make_camera_path("street_walk", scene, 6, params).events, path.events);
+  EXPECT_EQ(path_from_json_text(path_to_json_text(path)).events, path.events);
+  EXPECT_TRUE(make_camera_path("street_walk", scene, 5, {{"frames", 20}, {"timeline", {{"every", 30}}}}).events.empty());
+  EXPECT_THROW(make_camera_path("street_walk", scene, 5, {{"timeline", {{"every", 0}}}}), InputError);
+  EXPECT_THROW(make_camera_path("street_walk", scene, 5, {{"timeline", {{"churn", 0.9}}}}), InputError);
+  EXPECT_THROW(make_camera_path("street_walk", scene, 5, {{"timeline", {{"gone", 1}}}}), InputError);
 }
 
 // The thesis testbed's streets coincide with a Manhattan grid of its blocks, so the street walk

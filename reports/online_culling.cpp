@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <map>
 #include <memory>
+#include <set>
 
 #include "engine/online_image_space/online_culling.hpp"
 #include "engine/online_image_space/scene_polygons.hpp"
+#include "core/scene_timeline.hpp"
 #include "generators/camera_paths.hpp"
+#include "generators/scene_timeline_gen.hpp"
 #include "generators/city.hpp"
 #include "oracle/oracle.hpp"
 #include "reports/statistics.hpp"
@@ -39,13 +44,20 @@ std::uint64_t misdrawn(const oracle::IdImage& full, const std::vector<ObjectId>&
 struct Track {
   std::string method;
   std::unique_ptr<CullingMethod> owned;
+  std::function<std::unique_ptr<CullingMethod>(const Scene&)> rebuild;  // for a scene change it cannot follow
   OnlineImageSpaceCulling* online = nullptr;  // when it is one
   json parameters = json::object();
   std::vector<double> ms, critical_ms, other_ms, sent, in_frustum, cr_v, cr_o, objects, pixels;
   std::vector<double> select_ms, draw_ms, shrink_ms, hierarchy_ms, mark_ms;
+  std::vector<double> update_ms;  // per scene event: updated in place, or rebuilt
+  std::map<std::string, std::size_t> critical_reasons;
   std::size_t error_frames = 0;
   double most = 0;
 };
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
 Track online_track(const Scene& scene, OnlineImageSpaceCulling::Variant variant, const OnlineCullingOptions& o) {
   Track t;
@@ -57,11 +69,15 @@ Track online_track(const Scene& scene, OnlineImageSpaceCulling::Variant variant,
                   {"min_distance", o.min_distance}, {"max_speed", o.max_speed}, {"occluders", o.occluders},
                   {"critical_turn", o.critical_turn}, {"ground_occluder", o.ground_occluder}};
   t.owned = std::move(m);
+  t.rebuild = [variant, o](const Scene& present) { return std::make_unique<OnlineImageSpaceCulling>(present, variant, o); };
   return t;
 }
 
-// Runs every track along `path`, one full-scene id buffer per frame shared by all.
+// Runs every track along `path`, one full-scene id buffer per frame shared by all. A path with
+// a scene timeline changes the scene at its events: on-line culling updates its kd-tree in place,
+// the other tracks, frustum counting and the oracle are rebuilt on the present scene.
 void run_tracks(const Scene& scene, const CameraPath& path, std::vector<Track>& tracks, int threads, bool pixels = true) {
+  if (!path.events.empty()) validate_timeline(path, scene, path.frames.size());
   const std::vector<std::uint32_t> polygons_of = [&] {
     const online::ScenePolygons p = online::scene_polygons(scene);
     std::vector<std::uint32_t> count(p.ids.size(), 0);
@@ -80,10 +96,30 @@ void run_tracks(const Scene& scene, const CameraPath& path, std::vector<Track>& 
   }
   double total = 0;
   for (std::uint32_t c : polygons_of) total += c;
-  const std::unique_ptr<oracle::Oracle> truth = pixels ? std::make_unique<oracle::Oracle>(scene) : nullptr;
+  std::unique_ptr<oracle::Oracle> truth = pixels ? std::make_unique<oracle::Oracle>(scene) : nullptr;
   auto frustum = make_method("frustum", scene);
+  PresentScenes presents(scene);
+  std::size_t next_event = 0;
+  const auto change = [&](const std::vector<ObjectId>& appear, const std::vector<ObjectId>& vanish) {
+    const Scene& present = presents.apply(appear, vanish);  // rebuilt methods and the oracle refer to it
+    for (Track& t : tracks) {
+      const auto t0 = std::chrono::steady_clock::now();
+      if (!t.owned->update_scene(present, appear, vanish)) t.owned = t.rebuild(present);
+      t.update_ms.push_back(ms_since(t0));
+    }
+    frustum = make_method("frustum", present);
+    if (truth) truth = std::make_unique<oracle::Oracle>(present);
+  };
+  if (const std::set<ObjectId> start = absent_at_start(path); !start.empty()) {
+    change({}, std::vector<ObjectId>(start.begin(), start.end()));
+    for (Track& t : tracks) t.update_ms.clear();  // the start state is no event
+  }
   for (std::size_t f = 0; f < path.frames.size(); ++f) {
     const Camera& camera = path.frames[f];
+    if (next_event < path.events.size() && path.events[next_event].frame == f) {
+      change(path.events[next_event].appear, path.events[next_event].vanish);
+      ++next_event;
+    }
     double in_view = 0;
     for (ObjectId id : frustum->cull(camera).pvs) in_view += by_id[id];
     std::optional<oracle::IdImage> full;
@@ -99,6 +135,7 @@ void run_tracks(const Scene& scene, const CameraPath& path, std::vector<Track>& 
         sent = double(of.polygons_sent);
         in_view = double(of.polygons_in_frustum);  // the same count, from the method's own boxes
         (of.critical != CriticalReason::none ? t.critical_ms : t.other_ms).push_back(r.stats.cull_ms);
+        if (of.critical != CriticalReason::none) ++t.critical_reasons[to_string(of.critical)];
         if (of.critical != CriticalReason::none) {
           t.select_ms.push_back(of.select_ms), t.draw_ms.push_back(of.draw_ms), t.shrink_ms.push_back(of.shrink_ms);
           t.hierarchy_ms.push_back(of.hierarchy_ms), t.mark_ms.push_back(of.mark_ms);
@@ -145,6 +182,11 @@ json track_row(const Track& t, const Track* oh, const Track* frustum) {
     row["marking_ms_mean"] = {{"select_occluders", mean(t.select_ms)}, {"draw_occluders", mean(t.draw_ms)}, {"shrink", mean(t.shrink_ms)},
                               {"hierarchy", mean(t.hierarchy_ms)}, {"mark_tree", mean(t.mark_ms)}};
   }
+  if (!t.update_ms.empty())
+    row["scene_events"] = {{"count", t.update_ms.size()}, {"update_ms_median", median(t.update_ms)},
+                           {"update_ms_max", *std::max_element(t.update_ms.begin(), t.update_ms.end())},
+                           {"in_place", t.online != nullptr}};
+  if (t.online) row["critical_reasons"] = t.critical_reasons;
   if (oh && oh != &t) {
     row["time_median_over_oh_os"] = median(t.ms) / std::max(1e-9, median(oh->ms));
     row["polygons_sent_over_oh_os"] = mean(t.sent) / std::max(1e-9, mean(oh->sent));
@@ -160,6 +202,7 @@ Track builtin_track(const Scene& scene, const std::string& name, const MethodOpt
   Track t;
   t.method = name;
   t.owned = make_method(name, scene, o);
+  t.rebuild = [name, o](const Scene& present) { return make_method(name, present, o); };
   return t;
 }
 
@@ -252,6 +295,28 @@ json online_culling_table(const OnlineTableOptions& options, const MethodOptions
     }
     out["long_walk"] = {{"frames", long_path.frames.size()}, {"rows", rows}};
   }
+
+  // Section 6: the same walk while buildings vanish and come back (a seeded scene timeline).
+  if (options.dynamic_every > 0) {
+    CameraPath dynamic_path = path;
+    generators::TimelineParams timeline;
+    timeline.every = options.dynamic_every;
+    timeline.churn = options.dynamic_churn;
+    timeline.late = options.dynamic_churn;
+    dynamic_path.events = generators::scene_timeline(sweep_scene, dynamic_path.frames.size(), timeline, options.seed);
+    std::vector<Track> four;
+    four.push_back(builtin_track(sweep_scene, "frustum", method_options));
+    four.push_back(builtin_track(sweep_scene, "oh_os_conservative", method_options));
+    four.push_back(online_track(sweep_scene, OnlineImageSpaceCulling::Variant::published, method_options.online));
+    four.push_back(online_track(sweep_scene, OnlineImageSpaceCulling::Variant::guarded, method_options.online));
+    run_tracks(sweep_scene, dynamic_path, four, options.pixel_threads);
+    json rows = json::array();
+    for (const Track& t : four) rows.push_back(track_row(t, &four[1], &four[0]));
+    out["dynamic_walk"] = {{"city_grid", options.grids[options.sweep_city]}, {"frames", dynamic_path.frames.size()},
+                           {"timeline", {{"every", timeline.every}, {"churn", timeline.churn}, {"late", timeline.late}}},
+                           {"events", dynamic_path.events.size()}, {"rows", rows}};
+    std::fprintf(stderr, "online culling: dynamic walk done\n");
+  }
   return out;
 }
 
@@ -292,6 +357,22 @@ std::string online_culling_text(const json& t) {
                     r["most_misdrawn_in_a_frame"].get<double>());
       out += line;
     }
+  if (t.contains("dynamic_walk")) {
+    const json& d = t["dynamic_walk"];
+    out += "Dynamic walk (" + std::to_string(d["events"].get<std::size_t>()) + " scene events, " +
+           d["timeline"].dump() + "):\n";
+    std::snprintf(line, sizeof line, "%-18s %8s %8s %10s %10s %10s %7s %8s\n", "method", "ms_med", "ms_p95", "sent", "upd_med", "upd_max",
+                  "errfr", "misdrawn");
+    out += line;
+    for (const json& r : d["rows"]) {
+      const json& e = r.value("scene_events", json::object());
+      std::snprintf(line, sizeof line, "%-18s %8.3f %8.3f %10.0f %10.3f %10.3f %7zu %8.0f\n", r["method"].get<std::string>().c_str(),
+                    r["cull_ms_median"].get<double>(), r["cull_ms_p95"].get<double>(), r["polygons_sent_mean"].get<double>(),
+                    e.value("update_ms_median", 0.0), e.value("update_ms_max", 0.0), r["error_frames"].get<std::size_t>(),
+                    r["misdrawn_pixels"].get<double>());
+      out += line;
+    }
+  }
   return out;
 }
 

@@ -12,6 +12,10 @@
 //  - Fig. 11 and 12 on the 110k city: a Δ sweep (polygons sent, time, critical frames,
 //    misdrawn pixels, error frames), the misdrawn pixels per frame along the walk at Δ = 6, and
 //    the error frames along a long walk (the paper: 158 of 11,558 frames at Δ = 6).
+//  - Section 6 (dynamic scenes): the 800-frame walk on the 110k city again, while 1% of the
+//    buildings vanish every 30 frames and the previous event's come back (1% are absent at the
+//    start): time per scene event (on-line culling updates its kd-tree in place, OH(OS) is
+//    rebuilt), the critical frames an occluder's deletion causes, and the misdrawn pixels.
 //  - The accuracy/speed trade: for each Δ and mask size s, culling time against misdrawn pixels,
 //    beside the conservative methods' time at 0 misdrawn pixels.
 #pragma once
@@ -32,6 +36,8 @@ struct OnlineTableOptions {
   std::vector<int> deltas = {0, 2, 4, 6, 8, 12, 16};
   std::vector<int> mask_sizes = {128, 256, 512};
   int long_frames = 10000;
+  int dynamic_every = 30;                    // the dynamic walk's events (0: no dynamic walk)
+  double dynamic_churn = 0.01;
   int pixel_threads = 2;
 };
 

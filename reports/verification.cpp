@@ -7,7 +7,6 @@
 #include "engine/shrinking/circle_tiling.hpp"
 
 #include <algorithm>
-#include <deque>
 #include <set>
 #include <chrono>
 #include <cmath>
@@ -215,17 +214,13 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   std::size_t reference = n;
   for (std::size_t m = 0; m < n; ++m)
     if (out.runs[m].method == options.reference_method) reference = m;
-  // The scene timeline (core/scene_timeline.hpp): the objects absent now and the scenes of the
-  // present ones, kept while a rebuilt method or the oracle refers to them.
-  std::set<ObjectId> absent;
-  std::deque<Scene> present_scenes;
+  // The scene timeline (core/scene_timeline.hpp): the scenes of the present objects, kept while
+  // a rebuilt method or the oracle refers to them.
+  PresentScenes present_scenes(scene);
   std::unique_ptr<oracle::Oracle> oracle_now = std::make_unique<oracle::Oracle>(scene);
   const oracle::Oracle* truth = oracle_now.get();
   const auto change_scene = [&](const std::vector<ObjectId>& appeared, const std::vector<ObjectId>& vanished) {
-    for (ObjectId id : vanished) absent.insert(id);
-    for (ObjectId id : appeared) absent.erase(id);
-    present_scenes.push_back(present_scene(scene, absent));
-    const Scene& present = present_scenes.back();
+    const Scene& present = present_scenes.apply(appeared, vanished);
     for (std::size_t m = 0; m < n; ++m) {
       if (engines[m].method->update_scene(present, appeared, vanished)) continue;
       if (engines[m].outside)

@@ -127,7 +127,7 @@ Runner add_report(CLI::App& app) {
                    "region radius --region-radius, oracle every --oracle-stride frames), into report.json's \"table_4_1\"");
   sub->add_flag("--online-table", f->online_table,
                 "Also measure on-line image-space culling as Wang et al. 2001 did: Table 1 on four cities (3.6k-436k polygons, "
-                "--online-table-frames each), the Δ x s sweep, misdrawn pixels, and a --online-long-frames walk, into "
+                "--online-table-frames each), the Δ x s sweep, misdrawn pixels, a --online-long-frames walk and a dynamic walk, into "
                 "report.json's \"online_culling\"");
   sub->add_option("--online-table-frames", f->online_table_options.frames, "Street-walk frames per city for --online-table")
       ->capture_default_str()
@@ -135,6 +135,14 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--online-long-frames", f->online_table_options.long_frames, "Frames of --online-table's long walk (0: none)")
       ->capture_default_str()
       ->check(CLI::Range(0, 10000000));
+  sub->add_option("--online-dynamic-every", f->online_table_options.dynamic_every,
+                  "Frames between scene events of --online-table's dynamic walk (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
+  sub->add_option("--online-dynamic-churn", f->online_table_options.dynamic_churn,
+                  "Share of the buildings vanishing at each event of the dynamic walk (and absent at its start)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.5));
   sub->add_option("--online-table-grids", f->online_table_options.grids,
                   "Cities of --online-table: blocks each way (20 lots a block; default 6,17,33,66); the sweeps use the third")
       ->delimiter(',')

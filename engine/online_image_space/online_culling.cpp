@@ -61,6 +61,10 @@ OnlineImageSpaceCulling::OnlineImageSpaceCulling(const Scene& scene, Variant var
       tree_(polygons_, options.leaf_size), object_frame_(polygons_.ids.size(), 0), alive_object_(polygons_.ids.size(), 1),
       occluder_(polygons_.size(), 0) {
   for (std::uint32_t i = 0; i < polygons_.ids.size(); ++i) object_index_[polygons_.ids[i]] = i;
+  // scene_polygons appends each object's polygons in object order, so they are contiguous.
+  object_first_.assign(polygons_.ids.size() + 1, static_cast<std::uint32_t>(polygons_.size()));
+  for (auto p = static_cast<std::uint32_t>(polygons_.size()); p-- > 0;) object_first_[polygons_.object[p]] = p;
+  for (std::size_t o = polygons_.ids.size(); o-- > 0;) object_first_[o] = std::min(object_first_[o], object_first_[o + 1]);
 }
 
 void OnlineImageSpaceCulling::add_object(ObjectId id, const std::function<void(std::uint32_t)>& append) {
@@ -74,6 +78,7 @@ void OnlineImageSpaceCulling::add_object(ObjectId id, const std::function<void(s
   object_frame_.push_back(0);
   alive_object_.push_back(1);
   occluder_.resize(polygons_.size(), 0);
+  object_first_.push_back(static_cast<std::uint32_t>(polygons_.size()));
   for (std::size_t p = first; p < polygons_.size(); ++p) tree_.insert(static_cast<std::uint32_t>(p));
 }
 
@@ -101,8 +106,8 @@ void OnlineImageSpaceCulling::erase_object(ObjectId id) {
   if (at == object_index_.end() || !alive_object_[at->second])
     throw std::invalid_argument(name() + ": erase_object: object " + std::to_string(id) + " is not in the scene");
   alive_object_[at->second] = 0;
-  for (std::uint32_t p = 0; p < polygons_.size(); ++p) {  // O(n) per deletion; dynamic scenes change rarely
-    if (polygons_.object[p] != at->second || !tree_.alive(p)) continue;
+  for (std::uint32_t p = object_first_[at->second]; p < object_first_[at->second + 1]; ++p) {
+    if (!tree_.alive(p)) continue;
     tree_.erase(p);
     occluder_deleted_ = occluder_deleted_ || occluder_[p];
   }

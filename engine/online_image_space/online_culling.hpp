@@ -90,6 +90,7 @@ class OnlineImageSpaceCulling final : public CullingMethod {
   void measure_frustum(bool on) { measure_frustum_ = on; }
   std::size_t polygon_count() const { return polygons_.size(); }
   const online::PolygonKdTree& tree() const { return tree_; }
+  const online::ScenePolygons& polygons() const { return polygons_; }  // every polygon ever inserted (tree().alive says which are in)
 
  private:
   void mark(const Camera& camera, OnlineFrame& frame);
@@ -109,6 +110,7 @@ class OnlineImageSpaceCulling final : public CullingMethod {
   std::vector<std::uint32_t> object_frame_;  // last query each object was sent in (dedup)
   std::unordered_map<ObjectId, std::uint32_t> object_index_;  // id -> index into polygons_.ids
   std::vector<char> alive_object_;
+  std::vector<std::uint32_t> object_first_;  // object o's polygons are [object_first_[o], object_first_[o + 1])
   std::vector<char> occluder_;   // per polygon: drawn into a mask since the stamps were last cleared
   bool occluder_deleted_ = false;
   std::uint32_t query_ = 0;
