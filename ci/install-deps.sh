@@ -11,6 +11,7 @@ packages=(
   python3
   libtinygltf-dev libtinyobjloader-dev libassimp-dev
   libproj-dev proj-data  # footprint files' CRSs (core/formats/crs_projection.cpp)
+  libgdal-dev  # elevation models: GeoTIFF, ESRI ASCII grids (core/formats/dem_reader.cpp)
   chromium  # the report page's browser test (reports/html/tests/browser_test.sh) and screenshot
   clang-14 libclang-rt-14-dev llvm-14  # the sanitize preset: ASan, UBSan, libFuzzer, llvm-symbolizer
 )

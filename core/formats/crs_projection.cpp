@@ -68,8 +68,11 @@ CrsKind describe_crs(const std::string& crs, const std::string& where) {
   return kind;
 }
 
-void project_to_local_metres(const std::string& crs, double lon0, double lat0, std::vector<Vec2>& points,
-                             const std::string& where) {
+namespace {
+
+// Geographic CRS `crs` (longitude first) <-> the transverse Mercator centred at (lon0, lat0).
+void transform_local(const std::string& crs, double lon0, double lat0, std::vector<Vec2>& points, const std::string& where,
+                     PJ_DIRECTION direction) {
   if (!(std::abs(lat0) < 89.0) || !(std::abs(lon0) <= 180.0))
     throw InputError(where, "coordinates", "the data's centre (" + std::to_string(lon0) + ", " + std::to_string(lat0) +
                                                ") is no longitude/latitude a local projection can be centred on");
@@ -83,15 +86,28 @@ void project_to_local_metres(const std::string& crs, double lon0, double lat0, s
   const Pj op(proj_normalize_for_visualization(ctx.get(), raw.get()));
   if (!op) throw InputError(where, "crs", "cannot take '" + crs + "' longitude first (" + last_error(ctx.get()) + ")");
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const PJ_COORD out = proj_trans(op.get(), PJ_FWD, proj_coord(points[i].x, points[i].y, 0, 0));
+    const PJ_COORD out = proj_trans(op.get(), direction, proj_coord(points[i].x, points[i].y, 0, 0));
     if (!std::isfinite(out.xy.x) || !std::isfinite(out.xy.y)) {
       std::ostringstream p;
       p.precision(12);
-      p << "point (" << points[i].x << ", " << points[i].y << ") cannot be projected to local metres";
+      p << "point (" << points[i].x << ", " << points[i].y << ") cannot be projected " << (direction == PJ_FWD ? "to" : "from")
+        << " local metres";
       throw InputError(where, "coordinates", p.str());
     }
     points[i] = {out.xy.x, out.xy.y};
   }
+}
+
+}  // namespace
+
+void project_to_local_metres(const std::string& crs, double lon0, double lat0, std::vector<Vec2>& points,
+                             const std::string& where) {
+  transform_local(crs, lon0, lat0, points, where, PJ_FWD);
+}
+
+void local_metres_to_geographic(const std::string& crs, double lon0, double lat0, std::vector<Vec2>& points,
+                                const std::string& where) {
+  transform_local(crs, lon0, lat0, points, where, PJ_INV);
 }
 
 }  // namespace cullcheck::formats

@@ -35,5 +35,8 @@ CrsKind describe_crs(const std::string& crs, const std::string& where);
 // a point cannot be projected.
 void project_to_local_metres(const std::string& crs, double lon0, double lat0, std::vector<Vec2>& points,
                              const std::string& where);
+// The inverse: metres of that transverse Mercator back to longitude/latitude of `crs`.
+void local_metres_to_geographic(const std::string& crs, double lon0, double lat0, std::vector<Vec2>& points,
+                                const std::string& where);
 
 }  // namespace cullcheck::formats

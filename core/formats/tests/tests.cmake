@@ -5,6 +5,7 @@ if(TARGET GTest::gtest)
   add_executable(formats_test
     ${CMAKE_CURRENT_LIST_DIR}/geojson_import_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/cityjson_import_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/dem_import_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/gltf_import_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/index_limits_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/obj_import_test.cpp
