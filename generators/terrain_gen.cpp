@@ -12,6 +12,7 @@ namespace cullcheck::generators {
 namespace {
 
 constexpr std::uint64_t kTerrainTag = 0x7465727261696eULL;  // "terrain"
+constexpr std::uint64_t kHoleTag = 0x686f6c65ULL;            // "hole"
 
 // A uniform draw in [-1, 1) keyed by the vertex and the seed, not by draw order: the same
 // vertex gets the same displacement whatever order the passes visit it in.
@@ -65,6 +66,7 @@ void check(const TerrainParams& p) {
   c.in_range("base", p.base, -20000.0, 20000.0);
   c.above("roughness", p.roughness, 0.0, 0.999);
   c.in_range("steps", p.steps, 2, 1000);
+  c.in_range("holes", p.holes, 0.0, 0.5);
   if (p.style != "fractal" && p.style != "ridged" && p.style != "terraces" && p.style != "flat")
     c.fail("style", "'" + p.style + "' is none of fractal, ridged, terraces, flat");
 }
@@ -86,6 +88,12 @@ Terrain generate_terrain(const TerrainParams& p, std::uint64_t seed) {
   t.corner = {-0.5 * (t.nx - 1) * t.dx, -0.5 * (t.ny - 1) * t.dy};
   t.source = "generated " + p.style + " terrain, seed " + std::to_string(seed) + ", " + terrain_params_to_json(p).dump();
   t.z.assign(t.vertex_count(), p.base);
+  if (p.holes > 0.0) {
+    t.hole.assign(t.vertex_count(), 0);
+    for (std::uint32_t j = 0; j < t.ny; ++j)
+      for (std::uint32_t i = 0; i < t.nx; ++i) t.hole[t.index(i, j)] = Random::stream(seed, kHoleTag, i, j).bernoulli(p.holes);
+    if (std::all_of(t.hole.begin(), t.hole.end(), [](std::uint8_t h) { return h != 0; })) t.hole[0] = 0;
+  }
   if (p.style == "flat") return t;
   std::size_t n = 2;
   while (n + 1 < std::size_t(std::max(p.nx, p.ny))) n *= 2;

@@ -11,7 +11,9 @@
 //   terraces  the fractal field quantised to `steps` levels: flat benches joined by one-cell
 //             cliffs (the steepest slope a height field holds)
 //   flat      every vertex at `base` (an eye at that height sees the whole terrain edge-on)
-// Heights span [base, base + relief] (flat: base alone).
+// Heights span [base, base + relief] (flat: base alone). With `holes` > 0, each vertex is a hole
+// (core/terrain.hpp: an elevation model's masked NoData) with that probability, drawn per vertex
+// from the seed; at least one vertex stays filled.
 //
 // The thesis's test terrain (ch. 3.3: about 66 km x 56 km, about 4.96 million triangles) is
 // `thesis_terrain_params()`: 1711 x 1451 vertices 38.6 m apart.
@@ -34,11 +36,12 @@ struct TerrainParams {
   double base = 0.0;         // height of the lowest vertex
   double roughness = 0.55;   // fractal, ridged, terraces: displacement factor per halving
   int steps = 8;             // terraces: number of levels
+  double holes = 0.0;        // share of vertices made NoData holes (seeded), in [0, 0.5]; 0: none
 
   template <class Self, class Visitor>
   static void visit(Self& s, Visitor&& v) {
     v("nx", s.nx), v("ny", s.ny), v("spacing", s.spacing), v("style", s.style), v("relief", s.relief);
-    v("base", s.base), v("roughness", s.roughness), v("steps", s.steps);
+    v("base", s.base), v("roughness", s.roughness), v("steps", s.steps), v("holes", s.holes);
   }
 };
 

@@ -34,7 +34,7 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
-for sub in generate cull verify report region cell vbaoi gate fuzz html merge; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
+for sub in generate cull verify report region cell vbaoi gate fuzz html merge radar; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
 expect_exit 0 "generate" "$cc" generate --generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}' \
@@ -477,6 +477,31 @@ expect_exit 0 "fuzz passes a correct subject" "$cc" fuzz --subject "$subjects/bu
 [ "$(json_field "$work/fuzz2.json" "d['cases'] == 25 and d['cases_by_path_kind'].get('viewport_edge', 0) > 0 and d['cases_by_path_kind'].get('orthographic', 0) > 0")" = True ] \
   && pass || fail "fuzz: did not run 25 cases reaching viewport-edge and orthographic cameras"
 expect_exit 2 "fuzz: a subject that cannot start" "$cc" fuzz --subject "$work/no-such-program" --budget 2
+
+# ---- Radar echo over terrain (thesis ch. 3.3) -------------------------------------------------
+# The conservative rule holds the oracle (exit 0); the published rule misses a witnessed triangle
+# on the kept counterexample (exit 1, and its replay line fails again); echo PNGs are written.
+small_terrain='{"nx":9,"ny":9,"spacing":20,"relief":100}'
+expect_exit 0 "radar: the conservative rule" "$cc" radar --terrain-params "$small_terrain" --terrain-seed 2 --height 50 --grid 2 \
+  --rule conservative --echo "$work/echo" -o "$work/radar.json"
+for f in echo_oracle.png echo_conservative.png echo_diff_conservative.png; do
+  [ -s "$work/$f" ] && pass || fail "radar: $f not written"
+done
+[ "$(json_field "$work/radar.json" "d['rules'][0]['missed'] == 0 and d['oracle']['witnessed'] > 0 and d['rules'][0]['visible'] >= d['oracle']['witnessed']")" = True ] \
+  && pass || fail "radar: the conservative run's JSON does not show 0 missed of a witnessed set"
+expect_exit 1 "radar: the thesis rule misses" "$cc" radar --terrain-params "$small_terrain" --terrain-seed 2 --height 50 --grid 2 --rule thesis
+replay=$(sed -n 's/^replay: cullcheck //p' "$work/out")
+eval "\"\$cc\" $replay" >/dev/null 2>&1
+[ $? -eq 1 ] && pass || fail "radar: the printed replay ($replay) does not fail again"
+expect_exit 2 "radar: unknown rule" "$cc" radar --terrain-params "$small_terrain" --rule optimistic
+expect_error_names "radar: unknown rule" "'optimistic' is none of"
+expect_exit 2 "radar: transmitter off the terrain" "$cc" radar --terrain-params "$small_terrain" --at 1000,0
+expect_error_names "radar: transmitter off the terrain" "off the terrain"
+expect_exit 2 "radar: bad terrain parameter" "$cc" radar --terrain-params '{"nx":1}'
+expect_error_names "radar: bad terrain parameter" "nx"
+expect_exit 2 "radar: a missing elevation model" "$cc" radar --dem "$work/none.tif"
+expect_exit 2 "radar: a malformed grid" "$cc" radar --terrain-params "$small_terrain" --grid 3,x
+expect_error_names "radar: a malformed grid" "grid"
 
 echo "cli_test: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

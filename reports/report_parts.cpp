@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "reports/radar_table.hpp"
 #include "reports/report.hpp"
 #include "reports/shard_merge.hpp"
 #include "reports/subject_claims.hpp"
@@ -15,7 +16,7 @@ namespace cullcheck {
 using nlohmann::json;
 
 const std::vector<std::string>& report_section_names() {
-  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
+  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "radar_echo", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
   return names;
 }
 
@@ -28,6 +29,7 @@ std::uint64_t section_gate_violations(const json& document) {
     for (const auto& r : document["view_cells"]["runs"])
       if (r["claims_conservative"].get<bool>()) n += r["violations"].get<std::uint64_t>();
   if (document.contains("vbaoi")) n += vbaoi_gate_violations(document["vbaoi"]);
+  if (document.contains("radar_echo")) n += radar_table_violations(document["radar_echo"]);
   return n;
 }
 

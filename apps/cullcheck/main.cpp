@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   const std::vector<std::pair<CLI::App*, cli::Runner>> subcommands = [&] {
     std::vector<std::pair<CLI::App*, cli::Runner>> out;
     for (auto add : {cli::add_generate, cli::add_cull, cli::add_verify, cli::add_region, cli::add_cell, cli::add_vbaoi,
-                     cli::add_report, cli::add_gate, cli::add_fuzz, cli::add_html, cli::add_merge}) {
+                     cli::add_report, cli::add_gate, cli::add_fuzz, cli::add_html, cli::add_merge, cli::add_radar}) {
       cli::Runner run = add(app);
       out.emplace_back(app.get_subcommands({}).back(), std::move(run));
     }

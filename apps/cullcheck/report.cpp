@@ -6,6 +6,8 @@
 #include <memory>
 #include <optional>
 
+#include <filesystem>
+
 #include "apps/cullcheck/flags.hpp"
 #include "apps/cullcheck/page_writer.hpp"
 #include "apps/cullcheck/subject_flags.hpp"
@@ -27,6 +29,8 @@
 #include "reports/shrinking_claims.hpp"
 #include "reports/online_claims.hpp"
 #include "reports/online_culling.hpp"
+#include "reports/radar_claims.hpp"
+#include "reports/radar_table.hpp"
 #include "reports/table_4_1.hpp"
 #include "reports/vbaoi.hpp"
 #include "reports/verification.hpp"
@@ -42,6 +46,8 @@ Runner add_report(CLI::App& app) {
     MethodFlags tuning;
     bool online_table = false;
     OnlineTableOptions online_table_options;
+    bool radar_table = false;
+    RadarTableOptions radar_table_options;
     RegionFlags regions;
     std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
     std::optional<std::size_t> map_frame;
@@ -147,6 +153,25 @@ Runner add_report(CLI::App& app) {
                   "Cities of --online-table: blocks each way (20 lots a block; default 6,17,33,66); the sweeps use the third")
       ->delimiter(',')
       ->check(CLI::Range(1, 400));
+  sub->add_flag("--radar-table", f->radar_table,
+                "Also measure radar echo over terrain as thesis ch. 3.3 did: Table 3.3 on a generated terrain of the thesis's size "
+                "(--radar-grids, 60 and 360 degrees, both rules, the oracle's witnessed count), the same on --radar-dem, growth with "
+                "terrain size, the 2 s rotation bar; echo PNGs beside the report; into report.json's \"radar_echo\"");
+  sub->add_option("--radar-grids", f->radar_table_options.grids, "Grid sizes (cells each way) of --radar-table")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 4096));
+  sub->add_option("--radar-dem", f->radar_table_options.dem, "An elevation model (GeoTIFF, ESRI ASCII) --radar-table also measures, e.g. "
+                  "../shared/data/real/dem_mt_rainier/; NoData filled");
+  sub->add_option("--radar-height", f->radar_table_options.height, "The transmitter's mast for --radar-table, metres above ground")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10000.0));
+  sub->add_option("--radar-repeats", f->radar_table_options.repeats, "Timed echoes per row of --radar-table (median, p95)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  sub->add_option("--radar-terrain-shares", f->radar_table_options.size_shares,
+                  "Shares of the thesis terrain's area timed for --radar-table's growth with terrain size")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-6, 4.0));
   sub->add_flag("--view-cells", f->view_cells,
                    "Also compute the from-region PVS of every navigable region (street or free-space cell) with each region "
                    "method and sampling, "
@@ -218,6 +243,7 @@ Runner add_report(CLI::App& app) {
     std::vector<std::string> asked;
     const std::map<std::string, bool> wanted = {
         {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41}, {"online_culling", f->online_table},
+        {"radar_echo", f->radar_table},
         {"vbaoi", vbaoi_scene.has_value()},                {"scaling", !f->scaling_grids.empty()}, {"fuzz", !f->fuzz.subject.empty()},
         {"soak", f->soak.budget > 0},                      {"benchmarks", !f->benchmark_json.empty()}};
     for (const std::string& name : report_section_names())
@@ -246,7 +272,7 @@ Runner add_report(CLI::App& app) {
     parts.map_method = f->map_method;
     parts.map_frame = f->map_frame;
     for (auto search : {check_shadow_elevation_rule, check_image_space_pitch_roll, check_delta_horizon_claims, check_shrinking_claims,
-                        check_online_claims})
+                        check_online_claims, check_radar_claims})
       for (ClaimCheck& c : search(f->claim_options)) parts.searched_claims.push_back(std::move(c));
     if (mine("region_sweep")) {
       parts.sections["region_sweep"] =
@@ -272,6 +298,12 @@ Runner add_report(CLI::App& app) {
       f->online_table_options.pixel_threads = f->sampling.sampling.threads;
       parts.sections["online_culling"] = online_culling_table(f->online_table_options, f->tuning.options);
       std::cout << online_culling_text(parts.sections["online_culling"]);
+    }
+    if (mine("radar_echo")) {
+      const std::filesystem::path dir = std::filesystem::path(f->output).parent_path();
+      f->radar_table_options.echo_prefix = (dir / "radar_echo").string();
+      parts.sections["radar_echo"] = radar_table_3_3(f->radar_table_options);
+      std::cout << radar_table_3_3_text(parts.sections["radar_echo"]);
     }
     if (f->view_cells) {  // every shard: its share of the cells
       f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;

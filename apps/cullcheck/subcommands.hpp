@@ -22,5 +22,6 @@ Runner add_gate(CLI::App& app);
 Runner add_fuzz(CLI::App& app);
 Runner add_html(CLI::App& app);
 Runner add_merge(CLI::App& app);
+Runner add_radar(CLI::App& app);
 
 }  // namespace cullcheck::cli

@@ -82,6 +82,8 @@ std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
   return span_of_convex(ring.data(), ring.size(), eye);
 }
 
+std::optional<ConvexSpan> convex_span(const Vec2* ring, std::size_t n, Vec2 eye) { return span_of_convex(ring, n, eye); }
+
 std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye) {
   const Vec2 corners[4] = {box.lo, {box.hi.x, box.lo.y}, box.hi, {box.lo.x, box.hi.y}};
   return span_of_convex(corners, 4, eye);
@@ -93,9 +95,11 @@ double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye) {
   return std::sqrt(d2);
 }
 
-double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye) {
+double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye) { return min_boundary_distance(ring.data(), ring.size(), eye); }
+
+double min_boundary_distance(const Vec2* ring, std::size_t n, Vec2 eye) {
   double d2 = HUGE_VAL;
-  for (std::size_t i = 0, n = ring.size(), j = n - 1; i < n; j = i++) d2 = std::min(d2, segment_distance_squared(eye, ring[j], ring[i]));
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) d2 = std::min(d2, segment_distance_squared(eye, ring[j], ring[i]));
   return std::sqrt(d2);
 }
 

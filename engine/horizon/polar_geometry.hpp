@@ -22,11 +22,13 @@ struct ConvexSpan {
   std::size_t last_tangent = 0;   // vertex at span.end
 };
 std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye);
+std::optional<ConvexSpan> convex_span(const Vec2* ring, std::size_t n, Vec2 eye);
 std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye);
 
 double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye);
 // Distance from the eye to the polygon's boundary (eye outside).
 double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye);
+double min_boundary_distance(const Vec2* ring, std::size_t n, Vec2 eye);
 // Distance from the eye to the far chain: the edges facing away from the eye, through which a
 // line of sight leaves the prism.
 double min_far_chain_distance(const std::vector<Vec2>& ring, Vec2 eye);

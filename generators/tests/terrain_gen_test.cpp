@@ -78,6 +78,20 @@ TEST(TerrainGen, TheThesisTerrainIsItsSizeAndComesInSeconds) {
   EXPECT_NEAR((t.ny - 1) * t.dy, 56000.0, 100.0);
 }
 
+TEST(TerrainGen, HolesAreSeededPerVertexAndLeaveTheHeightsAlone) {
+  TerrainParams p = small("ridged");
+  EXPECT_TRUE(generate_terrain(p, 7).hole.empty());  // none asked: no flags at all
+  p.holes = 0.1;
+  const Terrain t = generate_terrain(p, 7);
+  ASSERT_EQ(t.hole.size(), t.vertex_count());
+  const auto holes = std::count(t.hole.begin(), t.hole.end(), 1);
+  EXPECT_EQ(holes, 52);  // of 693 vertices
+  EXPECT_EQ(t.present_triangle_count(), 1004u);  // of 1280
+  p.holes = 0.0;
+  EXPECT_EQ(generate_terrain(p, 7).z, t.z);  // the same heights under the holes
+  EXPECT_NO_THROW(validate(t, "terrain"));
+}
+
 TEST(TerrainGen, ParametersOutOfRangeAreRefusedNamingTheField) {
   const auto field_of = [](const nlohmann::json& params) {
     try {
@@ -96,6 +110,7 @@ TEST(TerrainGen, ParametersOutOfRangeAreRefusedNamingTheField) {
   EXPECT_EQ(field_of({{"steps", 1}}), "steps");
   EXPECT_EQ(field_of({{"height", 3}}), "height");  // unknown
   EXPECT_EQ(field_of({{"preset", "moon"}}), "preset");
+  EXPECT_EQ(field_of({{"holes", 0.6}}), "holes");
   EXPECT_EQ(terrain_params_from_json({{"preset", "thesis"}, {"relief", 10}}).nx, 1711);
 }
 

@@ -1,0 +1,117 @@
+// Radar echo generation over terrain (thesis ch. 3.3.2): the triangles a transmitter sees over
+// 360 degrees (or a sector), by the object-space occlusion horizon over a TriangleGrid.
+//
+// Both rules share the sweep: cells from front to back (best-first on their nearest plan
+// distance, flooding from the transmitter's cell to neighbours, so every cell of the sector is
+// met in order of distance, hidden or not); the transmitter's own cell first (step 1), whose
+// triangles facing it are all in the PVS; then each cell tested against the horizon H over its
+// azimuth span (step 2), and a visible cell's triangles, highest first, tested in turn until
+// the next one cannot clear min H over the cell; a visible triangle joins the PVS and its
+// shadow raises H. Triangles facing away from the transmitter (it lies below their plane) are
+// never in the PVS: from above a height field, a line of sight first meets a surface from
+// above (edge-on ones are kept by the conservative test). The PVS is the set of triangle numbers (core/terrain.hpp), ascending.
+//
+// The rules differ where the thesis's choices are not conservative:
+//   thesis        as published. A cell's highest possible elevation is its top at C2, the
+//                 cell's nearest point; a triangle is visible when a vertex's elevation clears
+//                 min H over the triangle's span; its shadow's elevation is β_min, the lower of
+//                 the elevations of its two extreme-azimuth vertices (Fig. 3.12-3.13); shadows
+//                 raise H at once.
+//   conservative  a cell's (and a triangle's) highest elevation bounded over its whole distance
+//                 range (top at the nearest point when above the eye, at the farthest when
+//                 below: a radar on a mast looks down on nearly everything); a triangle tested
+//                 per cell on its part there (the cell's box clipped to the triangle's plan
+//                 box); its shadow's elevation bounded below over the whole triangle (its
+//                 lowest vertex at the nearest distance when below the eye, the farthest when
+//                 above); shadows wait until the sweep has passed the triangle's farthest
+//                 point (Downs et al.'s rule, engine/horizon/horizon_sweep.hpp). Why it is
+//                 conservative: a line of sight at an azimuth inside a visible triangle's span
+//                 crosses the triangle's plan; if it passes below the triangle there it went
+//                 under the surface before, so what lies beyond the triangle at a lower
+//                 elevation than every point of the triangle is hidden. It needs the
+//                 transmitter above the terrain and no holes the line could pass under the
+//                 surface through: on a terrain with holes, shadows are not used.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "engine/horizon/horizon_sweep.hpp"
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/radar/triangle_grid.hpp"
+
+namespace cullcheck::radar {
+
+enum class RadarRule { thesis, conservative };
+
+// The four choices that make a rule, so that each of the thesis's can be checked on its own
+// with the others conservative (the claims ledger does).
+enum class CellBound { nearest_point, distance_range };   // C2 alone, or the cell's distance range
+enum class TriangleTest { vertices, bound };              // a vertex clears H, or the bound over the part in the cell
+enum class ShadowBound { beta_min, far_chain };           // Fig. 3.13's β_min, or the far chain's lower bound
+enum class ShadowMerge { immediate, delayed };            // raise H at once, or when the sweep has passed the triangle
+struct RadarRules {
+  CellBound cell = CellBound::distance_range;
+  TriangleTest triangle = TriangleTest::bound;
+  ShadowBound shadow = ShadowBound::far_chain;
+  ShadowMerge merge = ShadowMerge::delayed;
+  static RadarRules of(RadarRule rule);
+  friend bool operator==(const RadarRules&, const RadarRules&) = default;
+};
+
+// The rules by name: "thesis" and "conservative", and each of the thesis's four choices alone
+// with the other three conservative, so the claims ledger can say which of them loses triangles:
+// "thesis-cell-bound" (C2), "thesis-vertex-test", "thesis-beta-min", "thesis-immediate-merge".
+struct NamedRules {
+  std::string name;
+  RadarRules rules;
+  bool claims_conservative = true;  // every variant claims it: each is checked, none trusted
+};
+const std::vector<NamedRules>& named_rules();
+std::optional<RadarRules> rules_named(std::string_view name);
+
+// Azimuths [centre - width / 2, centre + width / 2]; a width of 2π or more is the full circle.
+struct Sector {
+  double centre = 0.0;
+  double width = kTwoPi;
+};
+
+struct EchoStatistics {
+  std::size_t cells_tested = 0;      // cells of the sector met by the sweep and tested against H
+  std::size_t cells_visible = 0;     // of those, not hidden
+  std::size_t triangles_tested = 0;  // triangle tests in visible cells (a triangle in k cells may count k times)
+  std::size_t shadows = 0;           // shadows merged into H
+};
+
+struct Echo {
+  std::vector<std::uint32_t> visible;  // triangle numbers, ascending
+  EchoStatistics stats;
+};
+
+class RadarEcho {
+ public:
+  RadarEcho(const TriangleGrid& grid, RadarRule rule, std::uint32_t horizon_bins = 16384);
+  RadarEcho(const TriangleGrid& grid, const RadarRules& rules, std::uint32_t horizon_bins = 16384);
+  // The triangles visible from `transmitter` (plan position and height, scene-local metres)
+  // within `sector`. The transmitter must lie over the grid.
+  Echo compute(Vec3 transmitter, const Sector& sector = {});
+  const RadarRules& rules() const { return rules_; }
+
+ private:
+  bool faces(std::uint32_t t, Vec3 eye) const;
+
+  const TriangleGrid& grid_;
+  RadarRules rules_;
+  OcclusionHorizon horizon_;
+  ShadowQueue queue_;
+  std::vector<std::uint32_t> seen_;     // per triangle: the query that found it visible
+  std::vector<std::uint32_t> queued_;   // per cell: the query that queued it
+  bool holes_;  // some triangle is absent: the conservative rule casts no shadows
+  std::uint32_t query_ = 0;
+};
+
+}  // namespace cullcheck::radar

@@ -1,0 +1,76 @@
+#include "reports/echo_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cullcheck {
+namespace {
+
+bool contains(const std::vector<std::uint32_t>& sorted, std::uint32_t t) { return std::binary_search(sorted.begin(), sorted.end(), t); }
+
+// Calls f(i, j, triangle or -1) for every pixel; pixel (i, j) shows plan point
+// transmitter + ((i + 0.5) / size - 0.5, 0.5 - (j + 0.5) / size) * 2 range.
+template <class F>
+void for_each_pixel(const Terrain& terrain, Vec3 transmitter, double range, int size, F&& f) {
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const Vec2 p{transmitter.x + ((i + 0.5) / size - 0.5) * 2 * range, transmitter.y + (0.5 - (j + 0.5) / size) * 2 * range};
+      f(i, j, triangle_at(terrain, p));
+    }
+}
+
+void draw_overlay(RgbImage& image, double range, int size) {
+  // Rings at 1/5 .. 5/5 of the range, one pixel wide.
+  const double centre = 0.5 * size, pixels_per_metre = size / (2 * range);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const double r = std::hypot(i + 0.5 - centre, j + 0.5 - centre) / pixels_per_metre;
+      for (int k = 1; k <= 5; ++k)
+        if (std::abs(r - range * k / 5) * pixels_per_metre < 0.5) image.set(i, j, echo_colours::kRing);
+    }
+  const int c = size / 2;
+  for (int d = -4; d <= 4; ++d) image.set(c + d, c, echo_colours::kTransmitter), image.set(c, c + d, echo_colours::kTransmitter);
+}
+
+}  // namespace
+
+std::int64_t triangle_at(const Terrain& t, Vec2 p) {
+  const double u = (p.x - t.corner.x) / t.dx, w = (p.y - t.corner.y) / t.dy;
+  if (!(u >= 0.0 && w >= 0.0 && u < t.nx - 1 && w < t.ny - 1)) return -1;
+  const auto i = std::uint32_t(u), j = std::uint32_t(w);
+  const std::size_t tri = 2 * (std::size_t(j) * (t.nx - 1) + i) + (u - i >= w - j ? 0 : 1);
+  return t.triangle_present(tri) ? std::int64_t(tri) : -1;
+}
+
+RgbImage echo_image(const Terrain& terrain, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size) {
+  RgbImage image(size, size, echo_colours::kOffTerrain);
+  for_each_pixel(terrain, transmitter, range, size, [&](int i, int j, std::int64_t t) {
+    if (t < 0) return;
+    if (!contains(visible, std::uint32_t(t))) return image.set(i, j, echo_colours::kNoReturn);
+    const auto v = terrain.triangle(std::size_t(t));
+    const Vec3 n = cross(v[1] - v[0], v[2] - v[0]);
+    const Vec3 to = transmitter - (v[0] + v[1] + v[2]) * (1.0 / 3);
+    const double facing = std::max(0.0, dot(n, to) / std::sqrt(dot(n, n) * dot(to, to)));
+    const auto level = std::uint8_t(std::lround(60 + 195 * facing));
+    image.set(i, j, {std::uint8_t(level / 4), level, std::uint8_t(level / 3)});
+  });
+  draw_overlay(image, range, size);
+  return image;
+}
+
+RgbImage echo_difference_image(const Terrain& terrain, const std::vector<std::uint32_t>& pvs, const std::vector<std::uint32_t>& witnessed,
+                               Vec3 transmitter, double range, int size) {
+  RgbImage image(size, size, echo_colours::kOffTerrain);
+  for_each_pixel(terrain, transmitter, range, size, [&](int i, int j, std::int64_t t) {
+    if (t < 0) return;
+    const bool in_pvs = contains(pvs, std::uint32_t(t)), seen = contains(witnessed, std::uint32_t(t));
+    image.set(i, j, in_pvs && seen ? echo_colours::kBoth
+                    : in_pvs       ? echo_colours::kOverEstimate
+                    : seen         ? echo_colours::kMissed
+                                   : echo_colours::kNeither);
+  });
+  draw_overlay(image, range, size);
+  return image;
+}
+
+}  // namespace cullcheck
