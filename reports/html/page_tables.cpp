@@ -218,6 +218,46 @@ std::string online_culling_section(const json& report) {
   return out + "</section>\n";
 }
 
+std::string radar_echo_section(const json& report) {
+  const json& t = member(report, "radar_echo");
+  if (!t.is_object()) return "";
+  std::string out =
+      "<section id=\"radar-echo\"><h2>Radar echo over terrain (thesis ch. 3.3): Table 3.3 in kind</h2>\n<p class=\"note\">"
+      "The transmitter " + number(value_of(t, "height_m")) + " m above the ground at each terrain's centre; 60 degrees centred "
+      "north, and the full circle. Missed = triangles the oracle's rays hit first that the PVS lacks; both rules claim none. The "
+      "thesis's times (60 degrees) are from a Pentium IV and a GeForce4 MX: compare how they grow, not their size.</p>\n";
+  for (const json& terrain : member(t, "terrains")) {
+    out += "<h3>" + escape(text_of(terrain, "summary")) + "</h3>\n<p class=\"note\">" + count(value_of(terrain, "triangles")) +
+           " triangles; the oracle witnessed " + count(value_of(member(terrain, "oracle")[0], "witnessed")) + " (60 degrees) and " +
+           count(value_of(member(terrain, "oracle")[1], "witnessed")) + " (360 degrees).</p>\n<table>" +
+           header({"grid", "degrees", "<rule", "ms median", "ms p95", "visible", "tested", "missed", "PVS / witnessed", "thesis ms"});
+    for (const json& row : member(terrain, "rows"))
+      for (const json& r : member(row, "rules")) {
+        const std::string g = count(value_of(row, "grid"));
+        const bool thesis = text_of(terrain, "name") == "generated" && value_of(row, "sector_deg") == 60 && text_of(r, "rule") == "thesis" &&
+                            member(t, "thesis_ms_60deg").contains(g);
+        out += "<tr>" + cell(g + "\u00d7" + g) + cell(count(value_of(row, "sector_deg"))) + cell(escape(text_of(r, "rule")), "name") +
+               cell(number(value_of(r, "ms_median"))) + cell(number(value_of(r, "ms_p95"))) + cell(count(value_of(r, "visible"))) +
+               cell(count(value_of(r, "triangles_tested"))) + violations_cell(value_of(r, "missed")) +
+               cell(number(value_of(r, "pvs_over_witnessed"))) + cell(thesis ? count(value_of(member(t, "thesis_ms_60deg"), g.c_str())) : "") + "</tr>\n";
+      }
+    out += "</table>\n";
+    for (const json& file : member(terrain, "echo_files")) {
+      const std::string path = file.is_string() ? file.get<std::string>() : "";
+      const std::string name = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+      out += "<figure class=\"echo\"><img src=\"" + escape(name) + "\" alt=\"" + escape(name) + "\" width=\"256\"><figcaption>" +
+             escape(name) + "</figcaption></figure>\n";
+    }
+  }
+  if (t.contains("moving_platform")) {
+    const json& m = member(t, "moving_platform");
+    out += "<p class=\"note\">Moving platform: " + count(value_of(m, "positions")) + " rotations " + number(value_of(m, "step_m")) +
+           " m apart, " + number(value_of(m, "ms_median")) + " ms each (median; p95 " + number(value_of(m, "ms_p95")) +
+           "); the previous rotation's PVS held " + percent(value_of(m, "previous_pvs_share_median")) + " of each.</p>\n";
+  }
+  return out + "</section>\n";
+}
+
 std::string regions_section(const json& report) {
   const json& regions = member(report, "regions");
   if (!regions.is_array() || regions.empty()) return "";

@@ -95,6 +95,28 @@ TEST(ReportPage, ShowsTheOnlineCullingTableWhenTheReportHasIt) {
   EXPECT_NE(page.find("at most 3,385 in one"), std::string::npos);
 }
 
+// cullcheck report --radar-table's section: Table 3.3's rows with the thesis's time beside its
+// 60-degree row, the echo pictures, the moving platform.
+TEST(ReportPage, ShowsTheRadarEchoTableWhenTheReportHasIt) {
+  json report = small_report(true);
+  EXPECT_EQ(report_page(report, {}).find("id=\"radar-echo\""), std::string::npos);
+  const json rule = {{"rule", "thesis"}, {"ms_median", 18.8}, {"ms_p95", 18.9}, {"visible", 8822}, {"triangles_tested", 47780},
+                     {"missed", 6782}, {"pvs_over_witnessed", 0.731}};
+  report["radar_echo"] = {{"height_m", 30}, {"thesis_ms_60deg", {{"100", 209}}},
+                          {"terrains", json::array({{{"name", "generated"}, {"summary", "generated fractal terrain"}, {"triangles", 4959000},
+                                                     {"oracle", json::array({{{"witnessed", 12076}}, {{"witnessed", 168512}}})},
+                                                     {"rows", json::array({{{"grid", 100}, {"sector_deg", 60}, {"rules", json::array({rule})}}})},
+                                                     {"echo_files", json::array({"/tmp/x/radar_echo_generated_thesis.png"})}}})},
+                          {"moving_platform", {{"positions", 20}, {"step_m", 200}, {"ms_median", 300.5}, {"ms_p95", 320.0},
+                                               {"previous_pvs_share_median", 0.9}}}};
+  const std::string page = report_page(report, {});
+  EXPECT_NE(page.find("<td>100\u00d7100</td><td>60</td><td class=\"name\">thesis</td><td>18.8</td><td>18.9</td><td>8,822</td><td>47,780</td>"),
+            std::string::npos);
+  EXPECT_NE(page.find("<td>209</td></tr>"), std::string::npos);
+  EXPECT_NE(page.find("<img src=\"radar_echo_generated_thesis.png\""), std::string::npos);
+  EXPECT_NE(page.find("Moving platform: 20 rotations"), std::string::npos);
+}
+
 TEST(ReportPage, CarriesTheMapInlineOrSaysWhyNot) {
   json report = small_report(true);
   report["map"] = {{"method", "oh_os_conservative"}, {"frame", 2}, {"chosen_by", "test"}, {"pvs", {1, 2}}, {"seen", {1}},
