@@ -62,7 +62,11 @@ std::array<Vec3, 3> TerrainOracle::primitive(std::size_t p) const {
   return v;
 }
 
-TerrainOracle::TerrainOracle(const Terrain& t) : embree_(std::make_unique<Embree>()) {
+TerrainOracle::TerrainOracle(const Terrain& t) : TerrainOracle(t, nullptr) {}
+
+TerrainOracle::TerrainOracle(const TerrainScene& scene) : TerrainOracle(scene.terrain, &scene) {}
+
+TerrainOracle::TerrainOracle(const Terrain& t, const TerrainScene* scene) : embree_(std::make_unique<Embree>()) {
   validate(t, "terrain");
   origin_ = {t.corner.x + 0.5 * (t.nx - 1) * t.dx, t.corner.y + 0.5 * (t.ny - 1) * t.dy, 0.0};
   // The vertices, from the grid's definition: vertex (i, j) at corner + (i dx, j dy).
@@ -85,6 +89,29 @@ TerrainOracle::TerrainOracle(const Terrain& t) : embree_(std::make_unique<Embree
       if (!hole(a) && !hole(b) && !hole(c)) numbers_.push_back(2 * cell), indices_.insert(indices_.end(), {a, b, c});
       if (!hole(a) && !hole(c) && !hole(d)) numbers_.push_back(2 * cell + 1), indices_.insert(indices_.end(), {a, c, d});
     }
+  outward_.assign(numbers_.size(), 0);
+  // Buildings (core/terrain_scene.hpp's numbering, after the terrain's 2 (nx - 1) (ny - 1)): per
+  // prism its ring at the base and at the roof as new vertices, then its walls (two a ring edge,
+  // lower then upper) and its roof fan from corner 0. Their winding faces outward.
+  std::uint32_t number = 2 * (t.nx - 1) * (t.ny - 1);
+  if (scene)
+    for (const StandingBuilding& b : scene->buildings)
+      for (const StandingPrism& prism : b.prisms) {
+        const auto n = std::uint32_t(prism.ring.size());
+        const auto first = std::uint32_t(vertices_.size() / 3);
+        for (const double z : {prism.base, prism.roof})
+          for (const Vec2& c : prism.ring)
+            vertices_.insert(vertices_.end(), {float(c.x - origin_.x), float(c.y - origin_.y), float(z - origin_.z)});
+        const auto low = [&](std::uint32_t k) { return first + k % n; };
+        const auto high = [&](std::uint32_t k) { return first + n + k % n; };
+        const auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+          numbers_.push_back(number++);
+          indices_.insert(indices_.end(), {a, b, c});
+          outward_.push_back(1);
+        };
+        for (std::uint32_t k = 0; k < n; ++k) add(low(k), low(k + 1), high(k + 1)), add(low(k), high(k + 1), high(k));
+        for (std::uint32_t k = 1; k + 1 < n; ++k) add(high(0), high(k), high(k + 1));
+      }
   embree_->device = rtcNewDevice("threads=1,set_affinity=0,verbose=0");
   if (!embree_->device) throw std::runtime_error("Embree: rtcNewDevice failed");
   embree_->scene = rtcNewScene(embree_->device);
@@ -123,10 +150,11 @@ std::int64_t TerrainOracle::first_hit(Vec3 from, Vec3 d, double t_far) const {
   const float u = rh.hit.u, v = rh.hit.v;
   if (!(u > kEdgeMargin && v > kEdgeMargin && 1.0f - u - v > kEdgeMargin)) return -1;
   // Only the upper side is terrain: a line of sight meeting a triangle from below came in through
-  // a NoData hole, under the ground, and sees nothing (it still stops there).
+  // a NoData hole, under the ground, and sees nothing (it still stops there). A building's
+  // triangle is seen from outside only (its winding says which side that is).
   const auto tri = primitive(rh.hit.primID);
   Vec3 up = cross(tri[1] - tri[0], tri[2] - tri[0]);
-  if (up.z < 0.0) up = up * -1.0;
+  if (!outward_[rh.hit.primID] && up.z < 0.0) up = up * -1.0;
   if (!(dot(up, d) < 0.0)) return -1;
   return std::int64_t(numbers_[rh.hit.primID]);
 }

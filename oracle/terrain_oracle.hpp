@@ -21,6 +21,7 @@
 
 #include "core/geometry.hpp"
 #include "core/terrain.hpp"
+#include "core/terrain_scene.hpp"
 
 namespace cullcheck::oracle {
 
@@ -43,6 +44,9 @@ struct TerrainWitness {
 class TerrainOracle {
  public:
   explicit TerrainOracle(const Terrain& terrain);
+  // The terrain and the buildings standing on it (their triangles numbered as
+  // core/terrain_scene.hpp documents, built here from the prisms' rings and heights).
+  explicit TerrainOracle(const TerrainScene& scene);
   ~TerrainOracle();
   TerrainOracle(const TerrainOracle&) = delete;
   TerrainOracle& operator=(const TerrainOracle&) = delete;
@@ -54,6 +58,7 @@ class TerrainOracle {
   std::size_t triangles() const { return numbers_.size(); }  // present triangles in the mesh
 
  private:
+  TerrainOracle(const Terrain& terrain, const TerrainScene* scene);
   std::array<Vec3, 3> primitive(std::size_t p) const;  // its vertices, as the mesh holds them
   struct Embree;
   std::unique_ptr<Embree> embree_;
@@ -61,6 +66,7 @@ class TerrainOracle {
   std::vector<std::uint32_t> numbers_;   // Embree primitive -> triangle number
   std::vector<float> vertices_;          // xyz per vertex, relative to origin_
   std::vector<std::uint32_t> indices_;   // 3 per primitive
+  std::vector<std::uint8_t> outward_;    // per primitive: 1 for a building's (its winding faces out)
 };
 
 }  // namespace cullcheck::oracle

@@ -500,6 +500,15 @@ expect_error_names "radar: transmitter off the terrain" "off the terrain"
 expect_exit 2 "radar: bad terrain parameter" "$cc" radar --terrain-params '{"nx":1}'
 expect_error_names "radar: bad terrain parameter" "nx"
 expect_exit 2 "radar: a missing elevation model" "$cc" radar --dem "$work/none.tif"
+# A city standing on the terrain (--with-city and the scene flags the other subcommands take);
+# one that does not fit on it is refused naming the building.
+expect_exit 0 "radar: a city on the terrain" "$cc" radar --terrain-params '{"nx":33,"ny":33,"spacing":10,"relief":40}' --with-city \
+  --generator manhattan --seed 2 --params '{"blocks_x":2,"blocks_y":2,"block_size":40}' --height 5 --grid 8 --rule conservative -o "$work/radar_city.json"
+[ "$(json_field "$work/radar_city.json" "d['buildings']['count'] > 0 and d['rules'][0]['missed'] == 0 and '--with-city --generator manhattan' in d['replay']")" = True ] \
+  && pass || fail "radar: the city run's JSON lacks its buildings, misses, or its replay lacks the city"
+expect_exit 2 "radar: a city larger than the terrain" "$cc" radar --terrain-params "$small_terrain" --with-city --generator manhattan \
+  --params '{"blocks_x":4,"blocks_y":4}'
+expect_error_names "radar: a city larger than the terrain" "field 'footprint'"
 expect_exit 2 "radar: a malformed grid" "$cc" radar --terrain-params "$small_terrain" --grid 3,x
 expect_error_names "radar: a malformed grid" "grid"
 

@@ -119,6 +119,24 @@ TEST(PolarGeometry, SpanAcrossEastAndTangents) {
   EXPECT_NEAR(min_far_chain_distance(slab, {0, 0}), 21.0, 1e-12);
 }
 
+// The radar property's counterexample (a mast at a rectangular roof's centroid, which lies on the
+// diagonal of its fan triangles): rounding put the eye just outside the triangle, its two
+// diagonal vertices in opposite directions, and the span came out as one direction, 0 wide,
+// leaving the third vertex out. Every vertex must lie in the span, or there is no span.
+TEST(PolarGeometry, AnEyeOnAnEdgeGetsNoSpanOrOneHoldingEveryVertex) {
+  const std::vector<Vec2> roof{{-17.293, -20.253}, {-4.652, -20.253}, {-4.652, -5.258}};
+  const Vec2 eye{-10.9725, -12.755500000000001};
+  const auto s = convex_span(roof, eye);
+  if (s) {
+    for (const Vec2& v : roof) {
+      double a = azimuth_of(v - eye);
+      if (a < s->span.begin) a += kTwoPi;
+      EXPECT_LE(a, s->span.end + 1e-9) << v.x << ", " << v.y;
+    }
+  }
+  EXPECT_FALSE(s);
+}
+
 TEST(Quadtree, InvariantsHoldOnAGrid) {
   Scene scene;
   for (int i = 0; i < 30; ++i)

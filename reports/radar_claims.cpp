@@ -78,12 +78,24 @@ std::vector<ClaimCheck> check_radar_claims(const ClaimSearchOptions& options) {
     TerrainSource source;
     source.params = generators::terrain_params_to_json(p);
     source.seed = options.seed * 1000 + std::uint64_t(index);
-    const Terrain terrain = source.load();
-    const oracle::TerrainOracle truth(terrain);
+    // A small city standing on a quarter of the terrains that can hold one.
+    if (r.bernoulli(0.25) && p.holes == 0.0 && (p.nx - 1) * p.spacing >= 130 && (p.ny - 1) * p.spacing >= 130) {
+      SceneSource city;
+      city.generator = "manhattan";
+      city.seed = source.seed;
+      city.parameters_json = nlohmann::json{{"blocks_x", r.uniform_int(1, 2)}, {"blocks_y", r.uniform_int(1, 2)},
+                                            {"block_size", 40.0}, {"street_width", 10.0}}
+                                 .dump();
+      source.city = city;
+    }
+    const TerrainScene scene = source.load_scene();
+    const Terrain& terrain = scene.terrain;
+    const radar::RadarSurface surface(scene);
+    const oracle::TerrainOracle truth(scene);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> grids;
     for (int g = 0; g < 3; ++g) grids.push_back({std::uint32_t(r.uniform_int(1, 24)), std::uint32_t(r.uniform_int(1, 24))});
     std::vector<radar::TriangleGrid> built;
-    for (const auto& [gx, gy] : grids) built.emplace_back(terrain, gx, gy);
+    for (const auto& [gx, gy] : grids) built.emplace_back(surface, gx, gy);
     std::size_t highest = 0;
     for (std::size_t v = 0; v < terrain.vertex_count(); ++v)
       if (!terrain.is_hole(v) && (terrain.is_hole(highest) || terrain.z[v] > terrain.z[highest])) highest = v;
@@ -100,7 +112,7 @@ std::vector<ClaimCheck> check_radar_claims(const ClaimSearchOptions& options) {
       const std::size_t g = std::size_t(r.uniform_int(0, 2));
       o.grid_x = grids[g].first, o.grid_y = grids[g].second;
       if (r.bernoulli(0.3)) o.sector = {r.uniform_real(0.0, kTwoPi), r.uniform_real(0.1, kPi)};
-      const double ground = terrain.height_at(at);
+      const double ground = standing_height(scene, at);  // on a roof when on a building
       if (!std::isfinite(ground)) continue;  // over a hole
       const Vec3 eye{at.x, at.y, ground + o.height};
       oracle::TerrainWitnessOptions w;

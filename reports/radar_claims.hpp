@@ -1,5 +1,6 @@
 // The claims ledger's entries for radar echo over terrain (thesis ch. 3.3.2), searched over
-// seeded generated terrains (fractal, ridged, terraces, flat; some with NoData holes), each with
+// seeded generated terrains (fractal, ridged, terraces, flat; some with NoData holes, some with a
+// small city standing on them), each with
 // transmitters anywhere, on a vertex and on the highest crest, 2 m to 500 m above the ground,
 // grids from 1 x 1 to 24 x 24 cells and sectors; every rule held to the terrain oracle:
 //  - thesis-3.3-radar-echo: the published rule "finds all visible primitives";

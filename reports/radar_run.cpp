@@ -58,10 +58,20 @@ Terrain TerrainSource::load(std::string* summary) const {
   return t;
 }
 
+TerrainScene TerrainSource::load_scene(std::string* summary) const {
+  Terrain terrain = load(summary);
+  if (!city) return stand_on_terrain(std::move(terrain), Scene{});
+  const Scene scene = city->load();
+  TerrainScene out = stand_on_terrain(std::move(terrain), scene, city->replay_flags());
+  if (summary) *summary += "; " + std::to_string(out.buildings.size()) + " buildings standing on it (" + city->replay_flags() + ")";
+  return out;
+}
+
 std::string TerrainSource::replay_flags() const {
   std::ostringstream s;
+  const std::string with_city = city ? " --with-city " + city->replay_flags() : "";
   if (dem.empty()) {
-    s << "--terrain-params " << shell_quote(params.dump()) << " --terrain-seed " << seed;
+    s << "--terrain-params " << shell_quote(params.dump()) << " --terrain-seed " << seed << with_city;
     return s.str();
   }
   s << "--dem " << shell_quote(dem);
@@ -70,6 +80,7 @@ std::string TerrainSource::replay_flags() const {
   if (o.step != 1) s << " --dem-step " << o.step;
   if (o.nodata == formats::NoData::mask) s << " --dem-nodata mask";
   if (!o.crs.empty()) s << " --dem-crs " << shell_quote(o.crs);
+  s << with_city;
   return s.str();
 }
 
@@ -124,12 +135,16 @@ nlohmann::json radar_rule_row(const radar::TriangleGrid& grid, const std::string
   return row;
 }
 
-nlohmann::json radar_run(const Terrain& terrain, const std::string& summary, const TerrainSource& source, const RadarRunOptions& o) {
+nlohmann::json radar_run(const TerrainScene& scene, const std::string& summary, const TerrainSource& source, const RadarRunOptions& o) {
+  const Terrain& terrain = scene.terrain;
   const Box3 bounds = terrain.bounds();
   const Vec2 at = o.at ? *o.at : bounds.plan().center();
-  const double ground = terrain.height_at(at);
+  double ground = terrain.height_at(at);
   if (!std::isfinite(ground))
     throw InputError("transmitter", "at", "(" + round_trip_text(at.x) + ", " + round_trip_text(at.y) + ") is off the terrain or over a NoData hole");
+  // On a building: a mast on its roof.
+  const std::int64_t on = building_at(scene, at);
+  ground = standing_height(scene, at);
   if (!(o.height >= 0.0) || !std::isfinite(o.height)) throw InputError("transmitter", "height", "must be a finite height above ground, 0 or more");
   if (o.grid_x == 0 || o.grid_y == 0 || o.grid_x > 4096 || o.grid_y > 4096)
     throw InputError("radar", "grid", "cells each way must lie in [1, 4096]");
@@ -145,18 +160,22 @@ nlohmann::json radar_run(const Terrain& terrain, const std::string& summary, con
                     {"triangles", terrain.present_triangle_count()},
                     {"height_range_m", {bounds.lo.z, bounds.hi.z}}};
   out["transmitter"] = {{"at", {at.x, at.y}}, {"ground_m", ground}, {"height_m", o.height}, {"z_m", eye.z}};
+  if (on >= 0) out["transmitter"]["on_building"] = scene.buildings[std::size_t(on)].id;
+  radar::RadarSurface surface(scene);
+  out["buildings"] = {{"count", scene.buildings.size()}, {"triangles", surface.triangle_count() - surface.terrain_triangles()},
+                      {"city", scene.city}};
   out["grid"] = {o.grid_x, o.grid_y};
   out["sector_deg"] = {degrees(o.sector.centre), full_circle(o.sector) ? 360.0 : degrees(o.sector.width)};
 
   const auto t_grid = std::chrono::steady_clock::now();
-  const radar::TriangleGrid grid(terrain, o.grid_x, o.grid_y);
+  const radar::TriangleGrid grid(surface, o.grid_x, o.grid_y);
   out["grid_build_ms"] = ms_since(t_grid);
   out["grid_references"] = grid.references();
 
   oracle::TerrainWitness seen;
   if (o.oracle) {
     const auto t0 = std::chrono::steady_clock::now();
-    const oracle::TerrainOracle truth(terrain);
+    const oracle::TerrainOracle truth(scene);
     oracle::TerrainWitnessOptions w = o.witness;
     w.sector_centre = o.sector.centre;
     w.sector_width = o.sector.width;

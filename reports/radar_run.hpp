@@ -10,9 +10,11 @@
 
 #include "core/formats/dem_reader.hpp"
 #include "core/terrain.hpp"
+#include "core/terrain_scene.hpp"
 #include "engine/radar/radar_echo.hpp"
 #include "engine/radar/triangle_grid.hpp"
 #include "oracle/terrain_oracle.hpp"
+#include "reports/scene_source.hpp"
 
 namespace cullcheck {
 
@@ -23,16 +25,20 @@ struct TerrainSource {
   formats::DemOptions dem_options;
   nlohmann::json params = nlohmann::json::object();
   std::uint64_t seed = 1;
+  // A city whose buildings stand on the terrain (core/terrain_scene.hpp); unset: the terrain alone.
+  std::optional<SceneSource> city;
 
   // The terrain, and one line saying what was done to it (NoData filled or masked, resampling).
   Terrain load(std::string* summary = nullptr) const;
+  // The terrain with the city's buildings standing on it (none without a city).
+  TerrainScene load_scene(std::string* summary = nullptr) const;
   // Flags that rebuild it on the command line (each as `cullcheck radar` takes it).
   std::string replay_flags() const;
 };
 
 struct RadarRunOptions {
   std::optional<Vec2> at;         // transmitter's plan position; unset: the terrain's centre
-  double height = 10.0;           // above the ground there, metres
+  double height = 10.0;           // above the ground there (above the roof on a building), metres
   std::uint32_t grid_x = 100, grid_y = 100;
   radar::Sector sector;           // radians
   std::vector<std::string> rules = {"thesis", "conservative"};  // radar::named_rules() names
@@ -49,7 +55,7 @@ struct RadarRunOptions {
 //             cells_tested, cells_visible, shadows, missed, first_missed, pvs_over_witnessed}],
 //  "oracle": {witnessed, rays, ms, subdivisions}, "echo_files": [...], "replay": "..."}
 // Throws InputError when the transmitter stands off the terrain or over a hole.
-nlohmann::json radar_run(const Terrain& terrain, const std::string& terrain_summary, const TerrainSource& source,
+nlohmann::json radar_run(const TerrainScene& scene, const std::string& terrain_summary, const TerrainSource& source,
                          const RadarRunOptions& options);
 std::string radar_table(const nlohmann::json& run);
 // One rule's row of a run: its echo timed `repeats` times (median, p95), its counts, and against

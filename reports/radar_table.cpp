@@ -143,6 +143,46 @@ json radar_table_3_3(const RadarTableOptions& o) {
     out["terrains"].push_back(std::move(t));
   }
 
+  if (o.city) {
+    TerrainSource with_city = generated;
+    with_city.city = SceneSource{};  // the built-in default city
+    const auto t0 = std::chrono::steady_clock::now();
+    const TerrainScene scene = with_city.load_scene(&summary);
+    const double load_ms = ms_since(t0);
+    const radar::RadarSurface surface(scene);
+    const Vec2 at = scene.terrain.bounds().plan().center();
+    const Vec3 eye{at.x, at.y, standing_height(scene, at) + o.height};
+    const auto t1 = std::chrono::steady_clock::now();
+    const oracle::TerrainOracle truth(scene);
+    oracle::TerrainWitnessOptions w;
+    w.subdivisions = o.oracle_subdivisions;
+    const oracle::TerrainWitness seen = truth.witnessed(eye, w);
+    const double oracle_ms = ms_since(t1);
+    const auto t2 = std::chrono::steady_clock::now();
+    const radar::TriangleGrid grid(surface, o.echo_grid, o.echo_grid);
+    json row = {{"summary", summary},
+                {"buildings", scene.buildings.size()},
+                {"building_triangles", surface.triangle_count() - surface.terrain_triangles()},
+                {"triangles", surface.present_triangle_count()},
+                {"load_ms", load_ms},
+                {"grid", o.echo_grid},
+                {"grid_build_ms", ms_since(t2)},
+                {"transmitter_z_m", eye.z},
+                {"on_building", building_at(scene, at) >= 0},
+                {"oracle", {{"witnessed", seen.witnessed.size()}, {"rays", seen.rays}, {"ms", oracle_ms}}},
+                {"sector_deg", 360}};
+    std::size_t building_witnessed = 0;
+    for (std::uint32_t t : seen.witnessed) building_witnessed += t >= surface.terrain_triangles();
+    row["oracle"]["building_triangles_witnessed"] = building_witnessed;
+    row["rules"] = json::array();
+    for (const std::string& rule : kRules) row["rules"].push_back(radar_rule_row(grid, rule, eye, kFull, o.repeats, &seen));
+    RadarRunOptions replay;
+    replay.height = o.height;
+    replay.grid_x = replay.grid_y = o.echo_grid;
+    row["replay"] = radar_replay_command(with_city, replay, at);
+    out["city_on_terrain"] = row;
+  }
+
   // Growth with the terrain's size: the thesis terrain's generator over shares of its area, one grid.
   out["size_scaling"] = json::array();
   for (const double share : o.size_shares) {
@@ -232,6 +272,19 @@ std::string radar_table_3_3_text(const json& table) {
         s << line;
       }
   }
+  if (table.contains("city_on_terrain")) {
+    const json& c = table["city_on_terrain"];
+    std::snprintf(line, sizeof line, "  the default city on it: %zu buildings (%zu triangles), grid %u, 360 deg; oracle witnessed %zu (%zu of buildings)\n",
+                  c["buildings"].get<std::size_t>(), c["building_triangles"].get<std::size_t>(), c["grid"].get<std::uint32_t>(),
+                  c["oracle"]["witnessed"].get<std::size_t>(), c["oracle"]["building_triangles_witnessed"].get<std::size_t>());
+    s << line;
+    for (const json& r : c["rules"]) {
+      std::snprintf(line, sizeof line, "    %-13s %9.1f ms median, %zu visible, %zu missed, PVS / witnessed %.3f\n", r["rule"].get<std::string>().c_str(),
+                    r["ms_median"].get<double>(), r["visible"].get<std::size_t>(), r["missed"].get<std::size_t>(),
+                    r["pvs_over_witnessed"].get<double>());
+      s << line;
+    }
+  }
   s << "  size scaling (360 deg):\n";
   for (const json& row : table["size_scaling"]) {
     std::snprintf(line, sizeof line, "    %9zu triangles, grid %u: thesis %.1f ms, conservative %.1f ms\n", row["triangles"].get<std::size_t>(),
@@ -261,6 +314,9 @@ std::uint64_t radar_table_violations(const json& table) {
     for (const json& row : t["rows"])
       for (const json& r : row["rules"])
         if (r["rule"] == "conservative") n += r["missed"].get<std::uint64_t>();
+  if (table.contains("city_on_terrain"))
+    for (const json& r : table["city_on_terrain"]["rules"])
+      if (r["rule"] == "conservative") n += r["missed"].get<std::uint64_t>();
   return n;
 }
 

@@ -34,6 +34,9 @@ struct RadarTableOptions {
   int platform_positions = 20;
   double platform_step = 200.0;
   std::uint32_t platform_grid = 100;
+  // The built-in default city (2,808 buildings) standing on the thesis terrain's centre, the mast
+  // in it: buildings on hills (core/terrain_scene.hpp).
+  bool city = true;
 };
 
 // report.json's "radar_echo".

@@ -40,7 +40,8 @@ Runner add_radar(CLI::App& app) {
     RadarRunOptions run;
     double height = 10.0;
     std::size_t step = 1;
-    bool no_oracle = false;
+    bool no_oracle = false, with_city = false;
+    SceneFlags city;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand(
@@ -75,6 +76,10 @@ Runner add_radar(CLI::App& app) {
   sub->add_option("--echo-size", f->run.echo_size, "Echo pictures' pixels a side")->check(CLI::Range(16, 8192))->capture_default_str();
   sub->add_option("--range", f->run.range, "Echo pictures' range, metres (default: to the farthest terrain corner)");
   sub->add_option("--output,-o", f->output, "Also write the run as JSON to this file");
+  sub->add_flag("--with-city", f->with_city,
+                "Stand a city's buildings on the terrain (--generator, --seed, --params or --scene, as the other subcommands take "
+                "them): walls down to the lowest ground under each, roofs their height above the highest");
+  f->city.add(*sub);
   return [f] {
     TerrainSource& source = f->source;
     source.params = parse_json_flag(f->terrain_params, "--terrain-params");
@@ -99,9 +104,10 @@ Runner add_radar(CLI::App& app) {
     }
     o.rules = parse_radar_rules(f->rule);
     o.oracle = !f->no_oracle;
+    if (f->with_city) source.city = f->city.source;
     std::string summary;
-    const Terrain terrain = source.load(&summary);
-    const nlohmann::json run = radar_run(terrain, summary, source, o);
+    const TerrainScene scene = source.load_scene(&summary);
+    const nlohmann::json run = radar_run(scene, summary, source, o);
     std::cout << radar_table(run);
     for (const auto& file : run["echo_files"]) std::cout << "wrote " << file.get<std::string>() << "\n";
     if (!f->output.empty()) write_text_file_atomically(f->output, run.dump(2) + "\n");

@@ -35,6 +35,13 @@ std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 e
   }
   const double width = std::atan2(cross(dlo, dhi), dot(dlo, dhi));
   if (!(width >= 0.0) || width >= kMaxSpan) return std::nullopt;
+  // Cross products order directions only within half a turn: an eye on (or within rounding of)
+  // an edge sees two vertices in opposite directions, and the sign between them is noise, so the
+  // extremes found may leave a vertex out. Within a true span below half a turn every direction
+  // is less than a quarter turn from the bisector of the extremes; one that is not betrays it.
+  const Vec2 bisector = dlo * (1.0 / length(dlo)) + dhi * (1.0 / length(dhi));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(dot(ring[i] - eye, bisector) > 0.0)) return std::nullopt;
   const double begin = azimuth_of(dlo);
   // Both ends are azimuths of tangent vertices: their rounding grows with the coordinates'
   // magnitude and shrinks with the vertices' distance (angular_slack).

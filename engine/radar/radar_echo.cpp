@@ -29,7 +29,8 @@ double far_chain_min_slope(const std::array<Vec3, 3>& p, const Vec2 (&ring)[3], 
     if (cross(b - a, e - a) < 0.0) continue;  // faces the eye: the near chain
     low = std::min({low, p[k].z, p[(k + 1) % 3].z});
     const Vec2 ab = b - a;
-    const double f = std::clamp(dot(e - a, ab) / dot(ab, ab), 0.0, 1.0);
+    // A zero-length edge (a wall's plan is a segment) is its end point.
+    const double f = dot(ab, ab) > 0.0 ? std::clamp(dot(e - a, ab) / dot(ab, ab), 0.0, 1.0) : 0.0;
     const Vec2 foot = a + ab * f - e;
     d2 = std::min(d2, dot(foot, foot));
   }
@@ -96,12 +97,12 @@ RadarEcho::RadarEcho(const TriangleGrid& grid, const RadarRules& rules, std::uin
     : grid_(grid),
       rules_(rules),
       horizon_(horizon_bins),
-      seen_(grid.terrain().triangle_count(), 0),
+      seen_(grid.surface().triangle_count(), 0),
       queued_(grid.cells().size(), 0),
-      holes_(grid.terrain().present_triangle_count() < grid.terrain().triangle_count()) {}
+      holes_(grid.surface().terrain_has_holes()) {}
 
 bool RadarEcho::faces(std::uint32_t t, Vec3 eye) const {
-  const auto p = grid_.terrain().triangle(t);
+  const auto p = grid_.surface().triangle(t);
   const double side = dot(cross(p[1] - p[0], p[2] - p[0]), eye - p[0]);
   // Edge-on counts as facing for the conservative rule (a grazing line may touch it).
   return rules_.triangle == TriangleTest::vertices ? side > 0.0 : side >= 0.0;
@@ -173,7 +174,7 @@ Echo RadarEcho::compute(Vec3 eye, const Sector& sector) {
       if ((c2 ? (top - eye.z) / near : max_slope(top, eye.z, near, far)) < floor) break;
       if (seen_[t] == query_ || !faces(t, eye)) continue;
       ++out.stats.triangles_tested;
-      const auto p = grid_.terrain().triangle(t);
+      const auto p = grid_.surface().triangle(t);
       const Vec2 ring[3] = {plan(p[0]), plan(p[1]), plan(p[2])};
       const auto span = convex_span(ring, 3, e);
       if (span && !spans_meet(span->span, wanted)) continue;  // outside the sector
@@ -198,9 +199,14 @@ Echo RadarEcho::compute(Vec3 eye, const Sector& sector) {
       if (!span || !shadows) continue;
       const double farthest = std::max({length(ring[0] - e), length(ring[1] - e), length(ring[2] - e)});
       // β_min: the lower elevation of the two extreme-azimuth vertices (Fig. 3.12-3.13).
+      // A building's wall (its plan a segment) stands on a solid rectangle from the buried base
+      // to its top vertex's height all along the segment: a line crossing the segment below
+      // that top is blocked by the wall or the ground, so the bound is the top over the segment.
+      const bool wall = grid_.surface().building_of(t) >= 0 && cross(ring[1] - ring[0], ring[2] - ring[0]) == 0.0;
       const double slope = rules_.shadow == ShadowBound::beta_min
                                ? std::min(slope_to(p[span->first_tangent], eye), slope_to(p[span->last_tangent], eye))
-                               : far_chain_min_slope(p, ring, eye, farthest);
+                           : wall ? min_slope(top, eye.z, min_boundary_distance(ring, 3, e), farthest)
+                                  : far_chain_min_slope(p, ring, eye, farthest);
       if (immediate) {
         horizon_.raise(span->span, slope);
         ++merged.occluders_applied;

@@ -9,7 +9,9 @@
 // the next one cannot clear min H over the cell; a visible triangle joins the PVS and its
 // shadow raises H. Triangles facing away from the transmitter (it lies below their plane) are
 // never in the PVS: from above a height field, a line of sight first meets a surface from
-// above (edge-on ones are kept by the conservative test). The PVS is the set of triangle numbers (core/terrain.hpp), ascending.
+// above (edge-on ones are kept by the conservative test; a building's walls face outward). The
+// PVS is the set of triangle numbers (core/terrain.hpp, then core/terrain_scene.hpp's for the
+// buildings), ascending.
 //
 // The rules differ where the thesis's choices are not conservative:
 //   thesis        as published. A cell's highest possible elevation is its top at C2, the
@@ -30,7 +32,13 @@
 //                 under the surface before, so what lies beyond the triangle at a lower
 //                 elevation than every point of the triangle is hidden. It needs the
 //                 transmitter above the terrain and no holes the line could pass under the
-//                 surface through: on a terrain with holes, shadows are not used.
+//                 surface through: on a terrain with holes, shadows are not used. With
+//                 buildings (core/terrain_scene.hpp) the transmitter must stand outside them
+//                 (or above the roof): a line under a roof triangle's far chain is inside the
+//                 prism (its walls reach down to the lowest ground under it) or under the
+//                 ground, so the argument holds; and a wall triangle stands for its whole wall,
+//                 solid from the buried base to the roof along its plan segment, so its shadow
+//                 is the roof line's (a roof above the eye faces away and casts none).
 #pragma once
 
 #include <cstdint>

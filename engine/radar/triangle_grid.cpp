@@ -6,9 +6,38 @@
 namespace cullcheck::radar {
 namespace {
 
+// Whether the segment pq meets the closed box (Liang-Barsky clipping).
+bool segment_meets(Vec2 p, Vec2 q, const Box2& b) {
+  double t0 = 0.0, t1 = 1.0;
+  const Vec2 d = q - p;
+  const double ps[4] = {-d.x, d.x, -d.y, d.y}, qs[4] = {p.x - b.lo.x, b.hi.x - p.x, p.y - b.lo.y, b.hi.y - p.y};
+  for (int k = 0; k < 4; ++k) {
+    if (ps[k] == 0.0) {
+      if (qs[k] < 0.0) return false;
+      continue;
+    }
+    const double r = qs[k] / ps[k];
+    if (ps[k] < 0.0) t0 = std::max(t0, r);
+    else t1 = std::min(t1, r);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
 // Whether the plan triangle abc (counter-clockwise) and the box overlap with positive area:
 // neither the box's axes nor the triangle's edge normals separate them (touching separates).
+// A triangle standing on edge (a building's wall: its plan is a segment) is in every cell its
+// segment meets, touching included.
 bool overlaps(const Vec2 (&v)[3], const Box2& b) {
+  if (cross(v[1] - v[0], v[2] - v[0]) == 0.0) {
+    Vec2 lo = v[0], hi = v[0];  // the segment's ends: the extreme points along it
+    const Vec2 d = (v[1] - v[0]) + (v[2] - v[0]);
+    for (const Vec2& p : v) {
+      if (dot(p - lo, d) < 0.0) lo = p;
+      if (dot(p - hi, d) > 0.0) hi = p;
+    }
+    return segment_meets(lo, hi, b);
+  }
   const double lo_x = std::min({v[0].x, v[1].x, v[2].x}), hi_x = std::max({v[0].x, v[1].x, v[2].x});
   const double lo_y = std::min({v[0].y, v[1].y, v[2].y}), hi_y = std::max({v[0].y, v[1].y, v[2].y});
   if (hi_x <= b.lo.x || lo_x >= b.hi.x || hi_y <= b.lo.y || lo_y >= b.hi.y) return false;
@@ -25,8 +54,9 @@ bool overlaps(const Vec2 (&v)[3], const Box2& b) {
 
 }  // namespace
 
-TriangleGrid::TriangleGrid(const Terrain& terrain, std::uint32_t cells_x, std::uint32_t cells_y)
-    : terrain_(terrain), cells_x_(cells_x), cells_y_(cells_y) {
+TriangleGrid::TriangleGrid(const RadarSurface& surface, std::uint32_t cells_x, std::uint32_t cells_y)
+    : surface_(surface), cells_x_(cells_x), cells_y_(cells_y) {
+  const Terrain& terrain = surface.terrain();
   if (cells_x == 0 || cells_y == 0) throw std::invalid_argument("TriangleGrid: a grid needs at least 1 x 1 cells");
   const Box3 b = terrain.bounds();
   plan_ = b.plan();
@@ -41,14 +71,14 @@ TriangleGrid::TriangleGrid(const Terrain& terrain, std::uint32_t cells_x, std::u
       c.box.hi = {cx + 1 == cells_x ? plan_.hi.x : plan_.lo.x + (cx + 1) * cell_w_,
                   cy + 1 == cells_y ? plan_.hi.y : plan_.lo.y + (cy + 1) * cell_h_};
     }
-  const std::size_t n = terrain.triangle_count();
+  const std::size_t n = surface.triangle_count();
   top_.assign(n, -HUGE_VAL);
   bottom_.assign(n, HUGE_VAL);
   // Two passes: count each cell's triangles, then place them; a triangle's candidate cells are
   // those its plan box overlaps.
   std::vector<std::uint32_t> counts(cells_.size(), 0);
   const auto for_each_cell = [&](std::size_t t, auto&& f) {
-    const auto p = terrain.triangle(t);
+    const auto p = surface_.triangle(t);
     const Vec2 v[3] = {cullcheck::plan(p[0]), cullcheck::plan(p[1]), cullcheck::plan(p[2])};
     const double lo_x = std::min({v[0].x, v[1].x, v[2].x}), hi_x = std::max({v[0].x, v[1].x, v[2].x});
     const double lo_y = std::min({v[0].y, v[1].y, v[2].y}), hi_y = std::max({v[0].y, v[1].y, v[2].y});
@@ -64,8 +94,8 @@ TriangleGrid::TriangleGrid(const Terrain& terrain, std::uint32_t cells_x, std::u
       }
   };
   for (std::size_t t = 0; t < n; ++t) {
-    if (!terrain.triangle_present(t)) continue;
-    const auto p = terrain.triangle(t);
+    if (!surface_.present(t)) continue;
+    const auto p = surface_.triangle(t);
     top_[t] = std::max({p[0].z, p[1].z, p[2].z});
     bottom_[t] = std::min({p[0].z, p[1].z, p[2].z});
     for_each_cell(t, [&](std::size_t c) { ++counts[c]; });
@@ -78,7 +108,7 @@ TriangleGrid::TriangleGrid(const Terrain& terrain, std::uint32_t cells_x, std::u
   }
   refs_.resize(next);
   for (std::size_t t = 0; t < n; ++t) {
-    if (!terrain.triangle_present(t)) continue;
+    if (!surface_.present(t)) continue;
     for_each_cell(t, [&](std::size_t c) { refs_[cells_[c].first + counts[c]++] = std::uint32_t(t); });
   }
   for (GridCell& c : cells_) {

@@ -1,4 +1,5 @@
-// The radar's preprocessing (thesis ch. 3.3.3): the terrain's triangles scattered into the cells
+// The radar's preprocessing (thesis ch. 3.3.3): the terrain's triangles (and its buildings')
+// scattered into the cells
 // of a regular grid laid over its plan, a triangle in every cell it meets; each cell's highest
 // value precomputed and its triangles sorted from highest to lowest.
 //
@@ -15,6 +16,7 @@
 
 #include "core/geometry.hpp"
 #include "core/terrain.hpp"
+#include "engine/radar/radar_surface.hpp"
 
 namespace cullcheck::radar {
 
@@ -26,11 +28,12 @@ struct GridCell {
 
 class TriangleGrid {
  public:
-  // cells_x x cells_y cells (each at least 1) over the terrain's plan extent. The terrain must
-  // outlive the grid.
-  TriangleGrid(const Terrain& terrain, std::uint32_t cells_x, std::uint32_t cells_y);
+  // cells_x x cells_y cells (each at least 1) over the terrain's plan extent (buildings must
+  // stand inside it). The terrain (and buildings) must outlive the grid.
+  TriangleGrid(const RadarSurface& surface, std::uint32_t cells_x, std::uint32_t cells_y);
 
-  const Terrain& terrain() const { return terrain_; }
+  const Terrain& terrain() const { return surface_.terrain(); }
+  const RadarSurface& surface() const { return surface_; }
   std::uint32_t cells_x() const { return cells_x_; }
   std::uint32_t cells_y() const { return cells_y_; }
   const Box2& plan() const { return plan_; }
@@ -46,7 +49,7 @@ class TriangleGrid {
   std::size_t references() const { return refs_.size(); }
 
  private:
-  const Terrain& terrain_;
+  RadarSurface surface_;
   std::uint32_t cells_x_, cells_y_;
   Box2 plan_;
   double cell_w_, cell_h_;
