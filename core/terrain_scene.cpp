@@ -96,6 +96,28 @@ double standing_height(const TerrainScene& scene, Vec2 p) {
   return z;
 }
 
+std::int64_t roof_triangle_at(const TerrainScene& scene, Vec2 p, double* roof) {
+  std::int64_t best = -1;
+  double top = -HUGE_VAL;
+  std::size_t first = 0;  // the prism's first triangle
+  for (const StandingBuilding& b : scene.buildings)
+    for (const StandingPrism& prism : b.prisms) {
+      const std::size_t n = prism.ring.size();
+      if (prism.roof > top && inside_convex(prism.ring, p))
+        for (std::size_t k = 1; k + 1 < n; ++k) {  // the fan triangle (0, k, k + 1) holding p
+          const Vec2 a = prism.ring[0], b2 = prism.ring[k], c = prism.ring[k + 1];
+          if (cross(b2 - a, p - a) >= 0.0 && cross(c - b2, p - b2) >= 0.0 && cross(a - c, p - c) >= 0.0) {
+            best = std::int64_t(first + 2 * n + (k - 1));
+            top = prism.roof;
+            break;
+          }
+        }
+      first += prism_triangle_count(prism);
+    }
+  if (roof) *roof = top;
+  return best;
+}
+
 std::int64_t building_at(const TerrainScene& scene, Vec2 p) {
   for (std::size_t k = 0; k < scene.buildings.size(); ++k)
     for (const StandingPrism& prism : scene.buildings[k].prisms)

@@ -65,6 +65,11 @@ std::size_t building_triangle_count(const StandingBuilding& b);
 // p lies on a building (NaN off the terrain or over a hole).
 double standing_height(const TerrainScene& scene, Vec2 p);
 
+// The roof triangle seen from straight above at plan point p (the highest roof there), as its
+// number among the buildings' triangles (add the terrain's triangle count for the global one),
+// or -1 when p is on no building; `roof` receives its height.
+std::int64_t roof_triangle_at(const TerrainScene& scene, Vec2 p, double* roof = nullptr);
+
 // The index (into TerrainScene::buildings) of the first building one of whose prisms contains
 // plan point p (boundary included), or -1.
 std::int64_t building_at(const TerrainScene& scene, Vec2 p);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/terrain.hpp"
+#include "core/terrain_scene.hpp"
 #include "reports/pictures.hpp"
 
 namespace cullcheck {
@@ -31,9 +32,13 @@ inline constexpr Rgb kMissed{255, 0, 0};
 inline constexpr Rgb kNeither{30, 30, 30};
 }  // namespace echo_colours
 
-// `visible`: triangle numbers, ascending.
+// `visible`: triangle numbers, ascending. With buildings standing on the terrain, a pixel on a
+// building shows its roof (a roof's return faces straight up).
 RgbImage echo_image(const Terrain& terrain, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size);
+RgbImage echo_image(const TerrainScene& scene, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size);
 RgbImage echo_difference_image(const Terrain& terrain, const std::vector<std::uint32_t>& pvs,
+                               const std::vector<std::uint32_t>& witnessed, Vec3 transmitter, double range, int size);
+RgbImage echo_difference_image(const TerrainScene& scene, const std::vector<std::uint32_t>& pvs,
                                const std::vector<std::uint32_t>& witnessed, Vec3 transmitter, double range, int size);
 
 // The triangle under plan point p, or -1 outside the grid or over a hole.

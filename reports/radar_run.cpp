@@ -192,15 +192,15 @@ nlohmann::json radar_run(const TerrainScene& scene, const std::string& summary, 
     write_png(image, path);
     files.push_back(path);
   };
-  if (!o.echo_prefix.empty() && o.oracle) picture(echo_image(terrain, seen.witnessed, eye, range, o.echo_size), "oracle");
+  if (!o.echo_prefix.empty() && o.oracle) picture(echo_image(scene, seen.witnessed, eye, range, o.echo_size), "oracle");
 
   out["rules"] = nlohmann::json::array();
   for (const std::string& name : o.rules) {
     radar::Echo result;
     nlohmann::json row = radar_rule_row(grid, name, eye, o.sector, o.repeats, o.oracle ? &seen : nullptr, &result);
     if (o.oracle && !o.echo_prefix.empty())
-      picture(echo_difference_image(terrain, result.visible, seen.witnessed, eye, range, o.echo_size), "diff_" + name);
-    if (!o.echo_prefix.empty()) picture(echo_image(terrain, result.visible, eye, range, o.echo_size), name);
+      picture(echo_difference_image(scene, result.visible, seen.witnessed, eye, range, o.echo_size), "diff_" + name);
+    if (!o.echo_prefix.empty()) picture(echo_image(scene, result.visible, eye, range, o.echo_size), name);
     out["rules"].push_back(row);
   }
   out["echo_range_m"] = range;

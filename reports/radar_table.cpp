@@ -124,23 +124,20 @@ json radar_table_3_3(const RadarTableOptions& o) {
   generated.params = {{"preset", "thesis"}};
   generated.seed = o.seed;
   std::string summary;
-  {
+  // Each terrain timed as it loads (generated, or read from the elevation model), then measured.
+  const auto measure = [&](const TerrainSource& source, const std::string& name, const char* load_key) {
     const auto t0 = std::chrono::steady_clock::now();
-    const Terrain thesis = generated.load(&summary);
-    const double gen_ms = ms_since(t0);
-    json t = measure_terrain(thesis, "generated", summary, generated, o);
-    t["generate_ms"] = gen_ms;
+    const Terrain terrain = source.load(&summary);
+    const double load_ms = ms_since(t0);
+    json t = measure_terrain(terrain, name, summary, source, o);
+    t[load_key] = load_ms;
     out["terrains"].push_back(std::move(t));
-  }
+  };
+  measure(generated, "generated", "generate_ms");
   if (!o.dem.empty()) {
     TerrainSource real;
     real.dem = o.dem;
-    const auto t0 = std::chrono::steady_clock::now();
-    const Terrain terrain = real.load(&summary);
-    const double load_ms = ms_since(t0);
-    json t = measure_terrain(terrain, "dem", summary, real, o);
-    t["load_ms"] = load_ms;
-    out["terrains"].push_back(std::move(t));
+    measure(real, "dem", "load_ms");
   }
 
   if (o.city) {
@@ -175,7 +172,21 @@ json radar_table_3_3(const RadarTableOptions& o) {
     for (std::uint32_t t : seen.witnessed) building_witnessed += t >= surface.terrain_triangles();
     row["oracle"]["building_triangles_witnessed"] = building_witnessed;
     row["rules"] = json::array();
-    for (const std::string& rule : kRules) row["rules"].push_back(radar_rule_row(grid, rule, eye, kFull, o.repeats, &seen));
+    // Pictures of the city's neighbourhood, 3 km a side.
+    for (const std::string& rule : kRules) {
+      radar::Echo echo;
+      row["rules"].push_back(radar_rule_row(grid, rule, eye, kFull, o.repeats, &seen, &echo));
+      if (o.echo_prefix.empty()) continue;
+      const std::string prefix = o.echo_prefix + "_city";
+      write_png(echo_image(scene, echo.visible, eye, 1500.0, o.echo_size), prefix + "_" + rule + ".png");
+      write_png(echo_difference_image(scene, echo.visible, seen.witnessed, eye, 1500.0, o.echo_size), prefix + "_diff_" + rule + ".png");
+      row["echo_files"].push_back(prefix + "_" + rule + ".png");
+      row["echo_files"].push_back(prefix + "_diff_" + rule + ".png");
+    }
+    if (!o.echo_prefix.empty()) {
+      write_png(echo_image(scene, seen.witnessed, eye, 1500.0, o.echo_size), o.echo_prefix + "_city_oracle.png");
+      row["echo_files"].push_back(o.echo_prefix + "_city_oracle.png");
+    }
     RadarRunOptions replay;
     replay.height = o.height;
     replay.grid_x = replay.grid_y = o.echo_grid;
