@@ -509,6 +509,12 @@ expect_exit 0 "radar: a city on the terrain" "$cc" radar --terrain-params '{"nx"
 expect_exit 2 "radar: a city larger than the terrain" "$cc" radar --terrain-params "$small_terrain" --with-city --generator manhattan \
   --params '{"blocks_x":4,"blocks_y":4}'
 expect_error_names "radar: a city larger than the terrain" "field 'footprint'"
+expect_exit 0 "radar: a region echo for a moving mast" "$cc" radar --terrain-params "$small_terrain" --terrain-seed 2 --height 50 --grid 2 \
+  --rule conservative --region 30 --region-rim 3 -o "$work/radar_region.json"
+[ "$(json_field "$work/radar_region.json" "d['region']['missed'] == 0 and d['region']['samples'] >= 4 and d['region']['visible'] >= d['rules'][0]['visible'] and '--region 30 --region-rim 3' in d['replay']")" = True ] \
+  && pass || fail "radar: the region run's JSON lacks its samples, misses, or its replay lacks the region"
+expect_exit 2 "radar: a region without the oracle" "$cc" radar --terrain-params "$small_terrain" --region 30 --no-oracle
+expect_error_names "radar: a region without the oracle" "region"
 expect_exit 2 "radar: a malformed grid" "$cc" radar --terrain-params "$small_terrain" --grid 3,x
 expect_error_names "radar: a malformed grid" "grid"
 

@@ -18,9 +18,11 @@
 #include "generators/terrain_gen.hpp"
 #include "oracle/terrain_oracle.hpp"
 #include "property_run.hpp"
+#include "terrain_cases.hpp"
 #include "reports/radar_run.hpp"
 #include "reports/scene_source.hpp"
 #include "core/errors.hpp"
+#include "core/sorted_sets.hpp"
 #include "core/terrain_scene.hpp"
 
 namespace cullcheck {
@@ -32,9 +34,7 @@ using radar::Sector;
 using radar::TriangleGrid;
 
 std::vector<std::uint32_t> missed(const std::vector<std::uint32_t>& witnessed, const std::vector<std::uint32_t>& pvs) {
-  std::vector<std::uint32_t> out;
-  std::set_difference(witnessed.begin(), witnessed.end(), pvs.begin(), pvs.end(), std::back_inserter(out));
-  return out;
+  return missing(witnessed, pvs);
 }
 
 enum class Place { anywhere, vertex, edge, crest, roof };
@@ -79,33 +79,9 @@ std::string replay(const RadarCase& c, const std::string& rule = "conservative")
 rc::Gen<RadarCase> radar_cases() {
   return rc::gen::exec([] {
     RadarCase c;
-    c.params.style = *rc::gen::element<std::string>("fractal", "ridged", "terraces", "flat");
-    c.params.nx = *rc::gen::inRange(3, 41);
-    c.params.ny = *rc::gen::inRange(3, 41);
-    c.params.spacing = *rc::gen::element(1.0, 7.5, 20.0, 30.0, 90.0);
-    c.params.relief = c.params.style == "flat" ? 0.0 : *rc::gen::inRange(0, 400);
-    c.params.base = *rc::gen::element(0.0, -30.0, 1200.0);
-    c.params.roughness = *rc::gen::element(0.45, 0.55, 0.7);
-    c.params.steps = *rc::gen::inRange(2, 9);
-    c.params.holes = *rc::gen::weightedElement<double>({{5, 0.0}, {1, 0.12}});
-    if (*rc::gen::inRange(0, 4) == 0) {  // a small city on it: the terrain at least 130 m across, no holes
-      SceneSource city;
-      city.generator = "manhattan";
-      city.seed = std::uint64_t(*rc::gen::inRange(1, 1000));
-      city.parameters_json = nlohmann::json{{"blocks_x", *rc::gen::inRange(1, 3)}, {"blocks_y", *rc::gen::inRange(1, 3)},
-                                            {"block_size", *rc::gen::element(20.0, 40.0)}, {"street_width", *rc::gen::element(6.0, 12.0)},
-                                            {"buildings_per_block", *rc::gen::inRange(1, 5)}}
-                                 .dump();
-      c.city = city;
-      c.params.style = *rc::gen::element<std::string>("fractal", "ridged", "terraces");
-      c.params.spacing = *rc::gen::element(7.5, 20.0, 30.0);
-      const int need = int(std::ceil(130.0 / c.params.spacing)) + 1;
-      c.params.nx = std::max(c.params.nx, need), c.params.ny = std::max(c.params.ny, need);
-      c.params.relief = *rc::gen::inRange(0, 120);
-      c.params.holes = 0.0;
-      c.roof_pick = *rc::gen::inRange(-1000, 1000);  // negative: not on a roof
-    }
-    c.seed = std::uint64_t(*rc::gen::inRange(1, 100000));
+    TerrainCase t = draw_terrain_case(6);
+    c.params = t.params, c.seed = t.seed, c.city = t.city;
+    if (c.city) c.roof_pick = *rc::gen::inRange(-1000, 1000);  // negative: not on a roof
     c.place = *rc::gen::element(Place::anywhere, Place::anywhere, Place::vertex, Place::edge, Place::crest);
     if (c.city && c.roof_pick >= 0) c.place = Place::roof;
     // Flat terrain at height 0: every triangle at the eye's height, edge-on.

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iterator>
 
+#include "core/sorted_sets.hpp"
 #include "engine/radar/radar_echo.hpp"
 #include "engine/radar/triangle_grid.hpp"
 #include "generators/random.hpp"
@@ -41,12 +41,6 @@ const RuleClaim kRuleClaims[] = {
      "cells and triangles bounded over their whole distance range, shadows from the far chain's lower bound merged once "
      "the sweep has passed the triangle, no shadows through NoData holes: every witnessed triangle is in the PVS"},
 };
-
-std::vector<std::uint32_t> missing(const std::vector<std::uint32_t>& witnessed, const std::vector<std::uint32_t>& pvs) {
-  std::vector<std::uint32_t> out;
-  std::set_difference(witnessed.begin(), witnessed.end(), pvs.begin(), pvs.end(), std::back_inserter(out));
-  return out;
-}
 
 }  // namespace
 

@@ -48,12 +48,18 @@ struct RadarRunOptions {
   std::string echo_prefix;        // when set: PREFIX_<rule>.png, PREFIX_oracle.png, PREFIX_diff_<rule>.png
   int echo_size = 1024;           // pixels a side
   double range = 0.0;             // of the echo pictures, metres; 0: to the farthest terrain corner
+  // A moving mast: the region echo (engine/radar/region_echo.hpp) for every position within this
+  // radius of `at`, held to the oracle from the centre, `region_rim` points on the rim and as
+  // many half-way out (reports/radar_region.hpp). 0: none.
+  double region = 0.0;
+  int region_rim = 8;
 };
 
 // {"terrain": {...}, "transmitter": {...}, "grid": [gx, gy], "sector_deg": [centre, width],
 //  "rules": [{rule, claims_conservative, ms_median, ms_p95, visible, triangles_tested,
 //             cells_tested, cells_visible, shadows, missed, first_missed, pvs_over_witnessed}],
-//  "oracle": {witnessed, rays, ms, subdivisions}, "echo_files": [...], "replay": "..."}
+//  "oracle": {witnessed, rays, ms, subdivisions}, "echo_files": [...], "replay": "...",
+//  "region": {radius_m, z_m, ms, visible, samples, missed, centre_echo_missed, witnessed_union}}
 // Throws InputError when the transmitter stands off the terrain or over a hole.
 nlohmann::json radar_run(const TerrainScene& scene, const std::string& terrain_summary, const TerrainSource& source,
                          const RadarRunOptions& options);
@@ -62,7 +68,7 @@ std::string radar_table(const nlohmann::json& run);
 // `seen` (when given) the witnessed triangles it misses and its PVS over the witnessed count.
 nlohmann::json radar_rule_row(const radar::TriangleGrid& grid, const std::string& rule, Vec3 eye, const radar::Sector& sector, int repeats,
                               const oracle::TerrainWitness* seen, radar::Echo* echo = nullptr);
-// Witnessed triangles some rule's PVS lacks, over all rules run (both claim conservative: the
+// Witnessed triangles some rule's PVS (or the region echo's) lacks, over all rules run (both claim conservative: the
 // thesis says its rule "finds all visible primitives").
 std::size_t radar_violations(const nlohmann::json& run);
 std::string radar_replay_command(const TerrainSource& source, const RadarRunOptions& options, Vec2 at);

@@ -5,14 +5,16 @@
 // misses; the same on a real elevation model when one is given (the Rainier tile); how the time
 // grows with the terrain's size at a fixed grid; which grids meet the thesis's real-time bar (a
 // rotation every 2 s, 360 degrees on one core); a moving platform (a rotation recomputed at each
-// position of a drive across the terrain, and how much of each PVS the previous one held); echo
-// PNGs of one grid beside the report.
+// position of a drive across the terrain, against region echoes reused over stretches of it:
+// reports/radar_platform.hpp); echo PNGs of one grid beside the report.
 #pragma once
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "reports/radar_platform.hpp"
 
 namespace cullcheck {
 
@@ -29,11 +31,9 @@ struct RadarTableOptions {
   std::uint32_t echo_grid = 100;
   int echo_size = 1024;
   double rotation_ms = 2000.0;
-  // The moving platform: rotations at positions platform_step metres apart along a line east
-  // through the centre (0 positions: none).
-  int platform_positions = 20;
-  double platform_step = 200.0;
-  std::uint32_t platform_grid = 100;
+  // The moving platform on the generated terrain (reports/radar_platform.hpp; 0 positions:
+  // none); its mast is `height`.
+  PlatformOptions platform;
   // The built-in default city (2,808 buildings) standing on the thesis terrain's centre, the mast
   // in it: buildings on hills (core/terrain_scene.hpp).
   bool city = true;

@@ -75,6 +75,13 @@ Runner add_radar(CLI::App& app) {
   sub->add_option("--echo", f->run.echo_prefix, "Write PREFIX_<rule>.png, PREFIX_oracle.png and PREFIX_diff_<rule>.png");
   sub->add_option("--echo-size", f->run.echo_size, "Echo pictures' pixels a side")->check(CLI::Range(16, 8192))->capture_default_str();
   sub->add_option("--range", f->run.range, "Echo pictures' range, metres (default: to the farthest terrain corner)");
+  sub->add_option("--region", f->run.region,
+                  "A moving mast: also the region echo valid for every position within this many metres of --at (the mast's "
+                  "height above what it stands on there), held to the oracle from sample positions in the disc")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--region-rim", f->run.region_rim, "Region samples: this many on the rim and as many half-way out, and the centre")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
   sub->add_option("--output,-o", f->output, "Also write the run as JSON to this file");
   sub->add_flag("--with-city", f->with_city,
                 "Stand a city's buildings on the terrain (--generator, --seed, --params or --scene, as the other subcommands take "

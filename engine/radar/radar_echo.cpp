@@ -3,25 +3,21 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <queue>
 #include <stdexcept>
 
 #include "engine/horizon/polar_geometry.hpp"
+#include "engine/radar/echo_geometry.hpp"
 #include "engine/method.hpp"
 
 namespace cullcheck::radar {
 namespace {
 
-// Lowest slope of any point of a triangle whose lowest vertex is `bottom`, at plan distances in
-// [near, far] from an eye at height eye_z (the mirror of max_slope).
-double min_slope(double bottom, double eye_z, double near, double far) {
-  return bottom <= eye_z ? (bottom - eye_z) / near : (bottom - eye_z) / far;
-}
-
 // A lower bound of the slope of every point of the triangle's far chain (the edges a line of
 // sight leaves it through), seen from outside its plan: the chain's lowest vertex at the chain's
 // nearest distance when below the eye, at the farthest vertex distance when above.
-double far_chain_min_slope(const std::array<Vec3, 3>& p, const Vec2 (&ring)[3], Vec3 eye, double farthest) {
+// A shrunk occluder's chain (ShrunkOccluders) stands at max(floor, its lowest vertex - drop).
+double far_chain_min_slope(const std::array<Vec3, 3>& p, const Vec2 (&ring)[3], Vec3 eye, double farthest,
+                           double floor = -HUGE_VAL, double drop = 0.0) {
   const Vec2 e = plan(eye);
   double low = HUGE_VAL, d2 = HUGE_VAL;
   for (int k = 0; k < 3; ++k) {
@@ -34,32 +30,19 @@ double far_chain_min_slope(const std::array<Vec3, 3>& p, const Vec2 (&ring)[3], 
     const Vec2 foot = a + ab * f - e;
     d2 = std::min(d2, dot(foot, foot));
   }
-  return min_slope(low, eye.z, std::sqrt(d2), farthest);
+  return min_slope(std::max(floor, low - drop), eye.z, std::sqrt(d2), farthest);
 }
 
 double slope_to(Vec3 p, Vec3 eye) { return (p.z - eye.z) / length(plan(p) - plan(eye)); }
 
+}  // namespace
+
 AzimuthSpan sector_span(const Sector& s) {
-  if (!(s.width < kTwoPi)) return {0.0, kTwoPi};
+  if (!(s.width < kTwoPi)) return full_circle_span();
   double begin = std::fmod(s.centre - 0.5 * s.width, kTwoPi);
   if (begin < 0) begin += kTwoPi;
   return {begin, begin + s.width};
 }
-
-// Whether two azimuth spans share a direction (with a little slack, so a boundary cell is kept).
-bool spans_meet(const AzimuthSpan& a, const AzimuthSpan& b) {
-  if (a.full_circle() || b.full_circle()) return true;
-  constexpr double slack = 1e-9;
-  for (int k = -1; k <= 1; ++k)
-    if (a.begin <= b.end + k * kTwoPi + slack && b.begin + k * kTwoPi <= a.end + slack) return true;
-  return false;
-}
-
-Box2 intersection(const Box2& a, const Box2& b) {
-  return {{std::max(a.lo.x, b.lo.x), std::max(a.lo.y, b.lo.y)}, {std::min(a.hi.x, b.hi.x), std::min(a.hi.y, b.hi.y)}};
-}
-
-}  // namespace
 
 RadarEcho::RadarEcho(const TriangleGrid& grid, RadarRule rule, std::uint32_t horizon_bins)
     : RadarEcho(grid, RadarRules::of(rule), horizon_bins) {}
@@ -97,24 +80,41 @@ RadarEcho::RadarEcho(const TriangleGrid& grid, const RadarRules& rules, std::uin
     : grid_(grid),
       rules_(rules),
       horizon_(horizon_bins),
+      front_(grid),
       seen_(grid.surface().triangle_count(), 0),
-      queued_(grid.cells().size(), 0),
       holes_(grid.surface().terrain_has_holes()) {}
 
-bool RadarEcho::faces(std::uint32_t t, Vec3 eye) const {
+bool RadarEcho::faces(std::uint32_t t, Vec3 eye, const ShrunkOccluders* shrunk) const {
   const auto p = grid_.surface().triangle(t);
-  const double side = dot(cross(p[1] - p[0], p[2] - p[0]), eye - p[0]);
+  const Vec3 n = cross(p[1] - p[0], p[2] - p[0]);
+  if (shrunk) {  // facing some eye of the cylinder: the largest n · (E - p0) over it
+    const double side = n.x * (eye.x - p[0].x) + n.y * (eye.y - p[0].y) + shrunk->radius * std::hypot(n.x, n.y) +
+                        n.z * ((n.z > 0.0 ? eye.z : shrunk->z_low) - p[0].z);
+    return side >= 0.0;
+  }
+  const double side = dot(n, eye - p[0]);
   // Edge-on counts as facing for the conservative rule (a grazing line may touch it).
   return rules_.triangle == TriangleTest::vertices ? side > 0.0 : side >= 0.0;
 }
 
-Echo RadarEcho::compute(Vec3 eye, const Sector& sector) {
+Echo RadarEcho::compute(Vec3 eye, const Sector& sector) { return sweep(eye, sector, nullptr); }
+
+Echo RadarEcho::compute_shrunk(Vec3 eye, const Sector& sector, const ShrunkOccluders& shrunk) {
+  if (!(rules_ == RadarRules::of(RadarRule::conservative)))
+    throw std::invalid_argument("RadarEcho: shrunk occluders need the conservative rule");
+  if (!shrunk.floors || shrunk.floors->size() != seen_.size() || !shrunk.drops || shrunk.drops->size() != seen_.size() ||
+      !(shrunk.radius >= 0.0) || !std::isfinite(shrunk.radius) ||
+      !(shrunk.z_low <= eye.z))
+    throw std::invalid_argument("RadarEcho: shrunk occluders need a floor per triangle, a finite radius and z_low <= the eye's height");
+  return sweep(eye, sector, &shrunk);
+}
+
+Echo RadarEcho::sweep(Vec3 eye, const Sector& sector, const ShrunkOccluders* shrunk) {
   const Vec2 e = plan(eye);
   if (!grid_.plan().contains(e) || !std::isfinite(eye.z))
     throw std::invalid_argument("RadarEcho: the transmitter must stand over the terrain");
   if (++query_ == 0) {  // the stamps wrapped: start them over
     std::fill(seen_.begin(), seen_.end(), 0);
-    std::fill(queued_.begin(), queued_.end(), 0);
     query_ = 1;
   }
   const bool immediate = rules_.merge == ShadowMerge::immediate;
@@ -127,35 +127,26 @@ Echo RadarEcho::compute(Vec3 eye, const Sector& sector) {
   horizon_.reset();
   queue_.clear();
   const AzimuthSpan wanted = sector_span(sector);
-  if (!wanted.full_circle()) horizon_.restrict_to(wanted);
+  // From a region, the sector is the eyes' own: a thing at distance d from the centre is seen
+  // from them up to asin(radius / d) off its azimuth from the centre, and the horizon, which
+  // holds what the centre cannot see, is not restricted (that would hide what they see).
+  const double radius = shrunk ? shrunk->radius : 0.0;
+  if (!wanted.full_circle() && !shrunk) horizon_.restrict_to(wanted);
+  const auto meets_sector = [&](const AzimuthSpan& span, double d) {
+    return d <= radius ? true : spans_meet(widened(span, azimuth_drift(radius, d)), wanted);
+  };
 
-  const std::uint32_t nx = grid_.cells_x(), ny = grid_.cells_y();
-  using Entry = std::pair<double, std::uint32_t>;  // nearest plan distance, cell index
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> front;
   const std::uint32_t start = grid_.cell_index_at(e);
-  front.push({0.0, start});
-  queued_[start] = query_;
+  front_.start(e);
   const auto in_sector = [&](const GridCell& c) {
     if (wanted.full_circle()) return true;
     const auto span = box_span(c.box, e);
-    return !span || spans_meet(span->span, wanted);
+    return !span || meets_sector(span->span, min_distance(e, c.box));
   };
 
-  while (!front.empty()) {
-    const auto [near, index] = front.top();
-    front.pop();
+  while (!front_.empty()) {
+    const auto [near, index] = front_.next(in_sector);
     const GridCell& cell = grid_.cells()[index];
-    const std::uint32_t cx = index % nx, cy = index / nx;
-    const auto flood = [&](std::uint32_t x, std::uint32_t y) {
-      const std::uint32_t n = y * nx + x;
-      if (queued_[n] == query_ || !in_sector(grid_.cells()[n])) return;
-      queued_[n] = query_;
-      front.push({min_distance(e, grid_.cells()[n].box), n});
-    };
-    if (cx > 0) flood(cx - 1, cy);
-    if (cx + 1 < nx) flood(cx + 1, cy);
-    if (cy > 0) flood(cx, cy - 1);
-    if (cy + 1 < ny) flood(cx, cy + 1);
     if (cell.count == 0) continue;
 
     if (!immediate) queue_.merge_nearer_than(near, horizon_, merged);
@@ -172,12 +163,12 @@ Echo RadarEcho::compute(Vec3 eye, const Sector& sector) {
       const double top = grid_.top(t);
       // Highest first: once a triangle's top cannot clear H over the cell, no later one can.
       if ((c2 ? (top - eye.z) / near : max_slope(top, eye.z, near, far)) < floor) break;
-      if (seen_[t] == query_ || !faces(t, eye)) continue;
+      if (seen_[t] == query_ || !faces(t, eye, shrunk)) continue;
       ++out.stats.triangles_tested;
       const auto p = grid_.surface().triangle(t);
       const Vec2 ring[3] = {plan(p[0]), plan(p[1]), plan(p[2])};
       const auto span = convex_span(ring, 3, e);
-      if (span && !spans_meet(span->span, wanted)) continue;  // outside the sector
+      if (span && !wanted.full_circle() && !meets_sector(span->span, min_boundary_distance(ring, 3, e))) continue;  // outside the sector
       bool visible = index == start;  // step 1: every facing triangle of the transmitter's cell
       if (!visible) {
         if (rules_.triangle == TriangleTest::vertices) {
@@ -203,10 +194,12 @@ Echo RadarEcho::compute(Vec3 eye, const Sector& sector) {
       // to its top vertex's height all along the segment: a line crossing the segment below
       // that top is blocked by the wall or the ground, so the bound is the top over the segment.
       const bool wall = grid_.surface().building_of(t) >= 0 && cross(ring[1] - ring[0], ring[2] - ring[0]) == 0.0;
+      // A shrunk occluder's far chain stands at its floor (walls included: their solid is shrunk away).
       const double slope = rules_.shadow == ShadowBound::beta_min
                                ? std::min(slope_to(p[span->first_tangent], eye), slope_to(p[span->last_tangent], eye))
-                           : wall ? min_slope(top, eye.z, min_boundary_distance(ring, 3, e), farthest)
-                                  : far_chain_min_slope(p, ring, eye, farthest);
+                           : shrunk ? far_chain_min_slope(p, ring, eye, farthest, (*shrunk->floors)[t], (*shrunk->drops)[t])
+                           : wall   ? min_slope(top, eye.z, min_boundary_distance(ring, 3, e), farthest)
+                                    : far_chain_min_slope(p, ring, eye, farthest);
       if (immediate) {
         horizon_.raise(span->span, slope);
         ++merged.occluders_applied;

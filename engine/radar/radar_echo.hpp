@@ -50,6 +50,7 @@
 #include "core/geometry.hpp"
 #include "engine/horizon/horizon_sweep.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/radar/cell_front.hpp"
 #include "engine/radar/triangle_grid.hpp"
 
 namespace cullcheck::radar {
@@ -87,6 +88,7 @@ struct Sector {
   double centre = 0.0;
   double width = kTwoPi;
 };
+AzimuthSpan sector_span(const Sector& s);
 
 struct EchoStatistics {
   std::size_t cells_tested = 0;      // cells of the sector met by the sweep and tested against H
@@ -100,6 +102,18 @@ struct Echo {
   EchoStatistics stats;
 };
 
+// Occluders shrunk for an echo from a region (engine/radar/region_echo.hpp): each triangle's
+// shadow cast at the higher of its floor (a height under which the solid eroded by `radius` in
+// plan lies all over the triangle's plan) and its far chain's lowest vertex less its drop (how
+// far that solid can lie below the chain); eyes anywhere within `radius` of the echo's eye,
+// from z_low up to its height, count for facing.
+struct ShrunkOccluders {
+  const std::vector<double>* floors = nullptr;  // per triangle, -inf: none
+  const std::vector<double>* drops = nullptr;   // per triangle, +inf: none
+  double radius = 0.0;
+  double z_low = 0.0;
+};
+
 class RadarEcho {
  public:
   RadarEcho(const TriangleGrid& grid, RadarRule rule, std::uint32_t horizon_bins = 16384);
@@ -107,17 +121,22 @@ class RadarEcho {
   // The triangles visible from `transmitter` (plan position and height, scene-local metres)
   // within `sector`. The transmitter must lie over the grid.
   Echo compute(Vec3 transmitter, const Sector& sector = {});
+  // The conservative rule's sweep from `transmitter` with every shadow cast by a shrunk occluder
+  // (region_echo.hpp says why that serves every eye within shrunk.radius); throws
+  // std::invalid_argument for another rule or floors that are not one per triangle.
+  Echo compute_shrunk(Vec3 transmitter, const Sector& sector, const ShrunkOccluders& shrunk);
   const RadarRules& rules() const { return rules_; }
 
  private:
-  bool faces(std::uint32_t t, Vec3 eye) const;
+  Echo sweep(Vec3 eye, const Sector& sector, const ShrunkOccluders* shrunk);
+  bool faces(std::uint32_t t, Vec3 eye, const ShrunkOccluders* shrunk) const;
 
   const TriangleGrid& grid_;
   RadarRules rules_;
   OcclusionHorizon horizon_;
   ShadowQueue queue_;
+  CellFront front_;
   std::vector<std::uint32_t> seen_;     // per triangle: the query that found it visible
-  std::vector<std::uint32_t> queued_;   // per cell: the query that queued it
   bool holes_;  // some triangle is absent: the conservative rule casts no shadows
   std::uint32_t query_ = 0;
 };

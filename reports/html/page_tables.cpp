@@ -252,8 +252,16 @@ std::string radar_echo_section(const json& report) {
   if (t.contains("moving_platform")) {
     const json& m = member(t, "moving_platform");
     out += "<p class=\"note\">Moving platform: " + count(value_of(m, "positions")) + " rotations " + number(value_of(m, "step_m")) +
-           " m apart, " + number(value_of(m, "ms_median")) + " ms each (median; p95 " + number(value_of(m, "ms_p95")) +
-           "); the previous rotation's PVS held " + percent(value_of(m, "previous_pvs_share_median")) + " of each.</p>\n";
+           " m apart, each from scratch in " + number(value_of(m, "ms_median")) + " ms (median; p95 " + number(value_of(m, "ms_p95")) +
+           "); the previous rotation's PVS held " + number(100.0 * value_of(m, "previous_pvs_share_median")) + "%" +
+           " of each. A region echo reused while the platform stays within its radius:</p>\n<table>" +
+           header({"radius (m)", "region echoes", "rotations / echo", "ms / echo median", "speedup", "PVS / rotation's", "missed"});
+    for (const json& r : member(m, "regions"))
+      out += "<tr>" + cell(number(value_of(r, "radius_m"))) + cell(count(value_of(r, "regions"))) +
+             cell(number(value_of(r, "rotations_per_region"))) + cell(count(value_of(r, "region_ms_median"))) +
+             cell(number(value_of(r, "speedup"))) + cell(number(value_of(r, "pvs_over_point_median"))) +
+             violations_cell(value_of(r, "missed")) + "</tr>\n";
+    out += "</table>\n";
   }
   return out + "</section>\n";
 }

@@ -108,13 +108,19 @@ TEST(ReportPage, ShowsTheRadarEchoTableWhenTheReportHasIt) {
                                                      {"rows", json::array({{{"grid", 100}, {"sector_deg", 60}, {"rules", json::array({rule})}}})},
                                                      {"echo_files", json::array({"/tmp/x/radar_echo_generated_thesis.png"})}}})},
                           {"moving_platform", {{"positions", 20}, {"step_m", 200}, {"ms_median", 300.5}, {"ms_p95", 320.0},
-                                               {"previous_pvs_share_median", 0.9}}}};
+                                               {"previous_pvs_share_median", 0.9},
+                                               {"regions", json::array({{{"radius_m", 100}, {"regions", 10}, {"rotations_per_region", 5},
+                                                                         {"region_ms_median", 410.5}, {"speedup", 3.25},
+                                                                         {"pvs_over_point_median", 1.75}, {"missed", 0}}})}}}};
   const std::string page = report_page(report, {});
   EXPECT_NE(page.find("<td>100\u00d7100</td><td>60</td><td class=\"name\">thesis</td><td>18.8</td><td>18.9</td><td>8,822</td><td>47,780</td>"),
             std::string::npos);
   EXPECT_NE(page.find("<td>209</td></tr>"), std::string::npos);
   EXPECT_NE(page.find("<img src=\"radar_echo_generated_thesis.png\""), std::string::npos);
   EXPECT_NE(page.find("Moving platform: 20 rotations"), std::string::npos);
+  EXPECT_NE(page.find("PVS held 90.0% of each"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>100</td><td>10</td><td>5.00</td><td>411</td><td>3.25</td><td>1.75</td><td>0</td></tr>"), std::string::npos)
+      << page.substr(std::min(page.size(), page.find("Moving platform")), 900);
 }
 
 TEST(ReportPage, CarriesTheMapInlineOrSaysWhyNot) {
