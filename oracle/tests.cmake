@@ -19,4 +19,5 @@ if(TARGET benchmark::benchmark)
   add_executable(oracle_bench ${CMAKE_CURRENT_LIST_DIR}/bench_oracle.cpp ${CMAKE_CURRENT_LIST_DIR}/bench_exact_2d.cpp)
     # The benchmark (not the oracle) uses the generators for the CLI's default city.
   target_link_libraries(oracle_bench PRIVATE cullcheck_oracle cullcheck_generators benchmark::benchmark cullcheck_warnings)
+  target_compile_options(oracle_bench PRIVATE $<$<CONFIG:RelWithDebInfo>:-O2>)  # timed loops: not the test files' -O1
 endif()
