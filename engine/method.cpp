@@ -5,6 +5,7 @@
 
 #include "engine/delta_horizon/guarded_delta_horizon.hpp"
 #include "engine/delta_horizon/thesis_delta_horizon.hpp"
+#include "engine/frustum/range_detection.hpp"
 #include "engine/frustum/view_frustum_culling.hpp"
 #include "engine/horizon/object_space_horizon.hpp"
 #include "engine/shrinking/minkowski_shrinking.hpp"
@@ -32,13 +33,13 @@ std::string CullingMethod::unsupported_camera(const Camera& camera) const {
 
 std::string method_unavailable_reason(std::string_view name, const Scene& scene) {
   // Frustum culling and on-line image-space culling work on polygons, so on any scene.
-  if (name == "frustum" || name == "online_is" || name == "online_is_guarded" || scene.prisms_only()) return "";
+  if (name == "frustum" || name == "rdt" || name == "rdt_corrected" || name == "radar_frustum" || name == "online_is" || name == "online_is_guarded" || scene.prisms_only()) return "";
   return "the scene holds " + std::to_string(scene.meshes.size()) + " mesh object(s) that are not vertical prisms; " +
          std::string(name) + " models every object as convex vertical prisms (2.5D), so only the oracle, frustum " +
          "culling and outside subjects run on it";
 }
 
-std::vector<std::string> method_names() { return {"frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded", "online_is",
+std::vector<std::string> method_names() { return {"frustum", "rdt", "rdt_corrected", "radar_frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded", "online_is",
                                                  "online_is_guarded"}; }
 
 std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& scene, const MethodOptions& options) {
@@ -47,6 +48,9 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
     if (std::find(names.begin(), names.end(), name) != names.end()) throw std::invalid_argument("method " + std::string(name) + ": " + why);
   }
   if (name == "frustum") return std::make_unique<ViewFrustumCulling>(scene, options);
+  if (name == "rdt") return std::make_unique<RangeDetectionCulling>(scene, RangeRule::published, options);
+  if (name == "rdt_corrected") return std::make_unique<RangeDetectionCulling>(scene, RangeRule::corrected, options);
+  if (name == "radar_frustum") return std::make_unique<RangeDetectionCulling>(scene, RangeRule::radar, options);
   if (name == "oh_is") return std::make_unique<ImageSpaceHorizonCulling>(scene, options);
   if (name == "oh_os_thesis") return std::make_unique<ObjectSpaceHorizonCulling>(scene, ShadowRule::thesis, options);
   if (name == "oh_os_conservative")

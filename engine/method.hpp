@@ -27,6 +27,7 @@ struct CullStatistics {
   std::uint64_t occluders_applied = 0;  // CVP shadows merged into the horizon
   std::uint64_t items_skipped = 0;      // cells and buildings skipped untested (ΔH: known hidden)
   std::uint64_t guard_fires = 0;        // ΔH: 1 when this frame fell back to a full recompute
+  std::uint64_t bound_tests = 0;        // frustum methods in camera space: point, sphere and box tests made
   double cull_ms = 0.0;                 // wall time of this query (an outside subject's own figure when it sends one)
   double protocol_ms = 0.0;             // outside subjects: time in the protocol (serialising, pipes, parsing)
 };

@@ -184,6 +184,17 @@ printf '{"format":"cullcheck-scene","version":1,"buildings":[{"id":0,"height":10
 expect_exit 0 "published rule is reported, not gated" "$cc" verify --scene "$work/slab.json" --method oh_os_thesis \
   --camera '{"position":[0,0,30],"pitch":-0.6,"hfov":1.047,"vfov":0.785}'
 grep -q "replay: cullcheck verify --scene" "$work/out" && pass || fail "violation printed no replay line"
+# --hold-conservative holds a method to a claim the engine does not gate: the ledger's replay of
+# range detection as published (the fuzzer's shrunk case: a wall beside the eye in a 1-degree
+# view) fails with it and passes without; the fuzzer finds such a case on its own.
+rdt_case=(--generator scatter --seed 0 --params '{"area_size":60,"count":1,"max_size":20,"thin_fraction":0.0}'
+  --camera '{"far":100000.0,"hfov":0.017453292519943295,"near":0.01,"pitch":0.0,"position":[-4.894,15.4535,1.7],"roll":0.0,"vfov":0.008726646259971648,"yaw":4.71238898038469}')
+expect_exit 1 "gate --hold-conservative refutes rdt" "$cc" gate "${rdt_case[@]}" --method rdt --hold-conservative -o "$work/rdt-gate.json"
+grep -q "replay: cullcheck verify .* --method rdt .*--hold-conservative" "$work/out" && pass || fail "rdt's replay lacks --hold-conservative"
+expect_exit 0 "gate without it reports rdt, not gated" "$cc" gate "${rdt_case[@]}" --method rdt -o "$work/rdt-gate.json"
+expect_exit 0 "gate passes rdt_corrected there" "$cc" gate "${rdt_case[@]}" --method rdt_corrected,radar_frustum --hold-conservative -o "$work/rdt-gate.json"
+expect_exit 1 "fuzz finds rdt's counterexample" "$cc" fuzz --method rdt --hold-conservative --budget 200 --no-pixels -o "$work/rdt-fuzz"
+grep -q "rdt: conservative: culled" "$work/out" && pass || fail "fuzz printed no rdt failure"
 
 
 # ---- The gate for outside subjects (README "The subject protocol") ----------------------------
@@ -300,12 +311,12 @@ expect_exit 0 "gate: orthographic camera" "$cc" gate --scene "$work/s.json" --me
 [ "$(json_field "$work/o.json" "d['runs'][1]['frames_skipped'], d['runs'][2]['frames_pvs_equal_to']['frustum']")" = "1 1" ] && pass \
   || fail "gate: orthographic camera: horizon method not skipped, or the subject differs from frustum culling"
 
-# Mesh scenes: frustum culling, on-line image-space culling (it works on polygons) and subjects
-# run, 2.5D methods are skipped with a reason.
+# Mesh scenes: frustum culling (by planes and by ranges), on-line image-space culling (it works on
+# polygons) and subjects run, 2.5D methods are skipped with a reason.
 expect_exit 0 "gate on a mesh scene" "$cc" gate --generator openings --params '{"blocks_x":1,"blocks_y":2}' \
   --path-params '{"frames":4}' --method all --subject "$subjects/minimal_subject" -o "$work/mesh.json"
-[ "$(json_field "$work/mesh.json" "len(d['skipped_methods']), [r['method'] for r in d['runs']]")" = "5 ['frustum', 'online_is', 'online_is_guarded', 'subject:minimal-box']" ] \
-  && pass || fail "gate on a mesh scene: expected frustum, online_is(_guarded) and the subject to run, five 2.5D methods skipped"
+[ "$(json_field "$work/mesh.json" "len(d['skipped_methods']), [r['method'] for r in d['runs']]")" = "5 ['frustum', 'rdt', 'rdt_corrected', 'radar_frustum', 'online_is', 'online_is_guarded', 'subject:minimal-box']" ] \
+  && pass || fail "gate on a mesh scene: expected frustum, rdt(_corrected), radar_frustum, online_is(_guarded) and the subject to run, five 2.5D methods skipped"
 # Point and region methods alike say why they were skipped (5 of each).
 expect_exit 0 "verify on a mesh scene with region methods" "$cc" verify --generator openings --params '{"blocks_x":1,"blocks_y":1}' \
   --path-params '{"frames":2}' --region-method all

@@ -10,6 +10,7 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <iostream>
@@ -62,10 +63,19 @@ std::uint64_t run_seed() {
 
 int main(int argc, char** argv) {
   if (std::getenv("RC_PARAMS") == nullptr) {
-    long budget = 1;
-    if (const char* b = std::getenv("CULLCHECK_RC_BUDGET")) budget = std::max(1L, std::strtol(b, nullptr, 10));
+    // A fraction below 1 (e.g. 0.5: the sanitizer run, ci/test.sh) runs fewer cases, at least 1.
+    double budget = 1.0;
+    if (const char* b = std::getenv("CULLCHECK_RC_BUDGET")) {
+      char* end = nullptr;
+      budget = std::strtod(b, &end);
+      if (end == b || *end != '\0' || !(budget > 0.0) || !(budget <= 1e6)) {
+        std::cerr << "CULLCHECK_RC_BUDGET='" << b << "' is not a positive number\n";
+        return 2;
+      }
+    }
+    const long max_success = std::max(1L, std::lround(500.0 * budget));
     const std::uint64_t seed = run_seed();
-    const std::string params = "seed=" + std::to_string(seed) + " max_success=" + std::to_string(500 * budget) + " max_size=100";
+    const std::string params = "seed=" + std::to_string(seed) + " max_success=" + std::to_string(max_success) + " max_size=100";
     setenv("RC_PARAMS", params.c_str(), 1);
     std::cout << "replay: RC_PARAMS=\"" << params << "\" " << argv[0]
               << (seed == kCiSeed ? "   (the fixed CI seed)\n" : "   (rotated by CULLCHECK_SEED)\n");

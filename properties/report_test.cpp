@@ -72,6 +72,13 @@ TEST(Report, CarriesTheSchemaFieldsAndPassesTheGate) {
       EXPECT_TRUE(m.contains(key)) << m["method"] << " lacks " << key;
     EXPECT_EQ(m["frames"], 40);
     EXPECT_GT(m["witnessed_mean"].get<double>(), 0.0);
+    // Range detection as published culls the quadtree's root whenever the eye is inside the
+    // city's box (no corner of it in view): its PVS is empty along the walk, and reported so.
+    if (m["method"] == "rdt") {
+      EXPECT_EQ(m["pvs_mean"].get<double>(), 0.0);
+      EXPECT_GT(m["violations"].get<int>(), 0);
+      continue;
+    }
     EXPECT_GE(m["overestimation"].get<double>(), 1.0) << m["method"];
     if (m["claims_conservative"].get<bool>()) {
       EXPECT_EQ(m["violations"], 0) << m["method"] << ": " << m["violation_replays"].dump();

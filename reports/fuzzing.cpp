@@ -62,9 +62,12 @@ class Recording final : public CullingMethod {
   std::size_t frame_ = 0;
 };
 
+// A built-in method held to conservativeness whatever it claims is replayed so.
+std::string held_flag(const FuzzOptions& options) { return options.hold_conservative ? " --hold-conservative" : ""; }
+
 // The replay of one frame of a case: `cullcheck gate` with the subject or the built-in method.
 std::string gate_replay(const SceneSource& source, const FuzzOptions& options, const std::string& method, const Camera& camera) {
-  const std::string who = options.subject.empty() ? " --method " + method : " --subject " + shell_quote(options.subject);
+  const std::string who = options.subject.empty() ? " --method " + method + held_flag(options) : " --subject " + shell_quote(options.subject);
   return "cullcheck gate " + source.replay_flags() + who + " --camera " + camera_arg(camera);
 }
 
@@ -81,6 +84,7 @@ CaseOutcome run_case(const generators::FuzzCase& c, const FuzzOptions& options, 
   vo.pixels = options.pixels;
   vo.reference_method.clear();  // the fuzzer judges each method by its own claim alone
   vo.measure_bare_embree = false;
+  vo.hold_conservative = options.hold_conservative;
   const SceneSource source{c.spec.generator, c.spec.seed, c.spec.params.dump(), ""};
   std::vector<MethodUnderTest> methods;
   std::vector<std::string> names;
@@ -405,7 +409,7 @@ std::string write_counterexample(const FuzzResult& result, const FuzzOptions& op
     camera["origin"] = {scene.origin.x, scene.origin.y};
     write_text_file_atomically(dir + "/camera.json", camera.dump() + "\n");
   }
-  const std::string who = options.subject.empty() ? "--method " + f.method : "--subject " + shell_quote(options.subject);
+  const std::string who = options.subject.empty() ? "--method " + f.method + held_flag(options) : "--subject " + shell_quote(options.subject);
   const std::string replay = "cullcheck gate --scene \"$here/scene.json\" --path \"$here/path.json\" " + who +
                              " --oracle-stride 1 -o \"$here/gate.json\"";
   write_text_file_atomically(dir + "/replay.sh", "#!/bin/sh\n# Replays the fuzzer's minimal counterexample: " + f.message +

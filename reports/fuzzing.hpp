@@ -39,6 +39,7 @@ struct FuzzOptions {
   oracle::SamplingOptions sampling;
   std::string work_dir;       // each case's scene files go here (a temporary folder when empty)
   bool pixels = true;         // hold every frame to the pixel oracle too
+  bool hold_conservative = false;  // built-in methods judged conservative whatever they claim (reports/held_conservative.hpp)
   // Run only the cases this shard owns (the n-th case drawn is shard n mod N's; every shard
   // draws every case, which is cheap, so each case is the one the unsharded run draws). A shard
   // stops at its own first failure and shrinks it; merge_fuzz_shards keeps the lowest.

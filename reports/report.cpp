@@ -176,6 +176,8 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
                     {"occluders_applied_mean", ratio(static_cast<double>(r.totals.occluders_applied), frames)},
                     {"items_skipped_mean", ratio(static_cast<double>(r.totals.items_skipped), frames)},
                     {"guard_fires", r.totals.guard_fires},
+                    {"bound_tests_per_object", ratio(static_cast<double>(r.totals.bound_tests),
+                                                     static_cast<double>(r.totals.cells_tested + r.totals.buildings_tested))},
                     {"guard_fire_rate", ratio(static_cast<double>(r.totals.guard_fires), frames)},
                     {"frames_pvs_differs_from_oh_os",
                      r.compared_with_reference ? nlohmann::json(r.frames_differing_from_reference) : nlohmann::json(nullptr)},

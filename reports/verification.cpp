@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "core/scene_io.hpp"
+#include "reports/held_conservative.hpp"
 #include "subjects/subject_error.hpp"
 
 namespace cullcheck {
@@ -144,6 +145,7 @@ std::vector<MethodUnderTest> builtin_methods(const Scene& scene, const SceneSour
                                              const MethodOptions& method_options, const VerificationOptions& options,
                                              std::vector<std::pair<std::string, std::string>>* skipped) {
   std::vector<MethodUnderTest> out;
+  const std::string held = options.hold_conservative ? " --hold-conservative" : "";
   for (const std::string& name : names) {
     if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
       if (skipped) skipped->emplace_back(name, why);
@@ -151,12 +153,13 @@ std::vector<MethodUnderTest> builtin_methods(const Scene& scene, const SceneSour
     }
     MethodUnderTest m;
     m.method = make_method(name, scene, method_options);
+    if (options.hold_conservative) m.method = held_conservative(std::move(m.method));
     const bool incremental = m.method->incremental() && !options.path_replay_flags.empty();
-    m.replay = [source, name, incremental, path_flags = options.path_replay_flags](std::size_t frame, const Camera& camera) {
+    m.replay = [source, name, incremental, held, path_flags = options.path_replay_flags](std::size_t frame, const Camera& camera) {
       if (incremental)
-        return "cullcheck verify " + source.replay_flags() + " " + path_flags + " --method " + name + "   # violation at frame " +
+        return "cullcheck verify " + source.replay_flags() + " " + path_flags + " --method " + name + held + "   # violation at frame " +
                std::to_string(frame);
-      return replay_command(source, name, camera);
+      return replay_command(source, name, camera) + held;
     };
     out.push_back(std::move(m));
   }
@@ -226,6 +229,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       if (engines[m].outside)
         throw InputError("path", "events", out.runs[m].method + " cannot follow a scene timeline: the subject protocol has no scene changes yet");
       engines[m].method = make_method(out.runs[m].method, present, method_options);
+      if (options.hold_conservative) engines[m].method = held_conservative(std::move(engines[m].method));
     }
     for (std::size_t r = 0; r < region_engines.size(); ++r) {
       region_engines[r] = make_region_method(out.regions[r].method, present, method_options);
@@ -293,6 +297,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.totals.occluders_applied += s.occluders_applied;
       run.totals.items_skipped += s.items_skipped;
       run.totals.guard_fires += s.guard_fires;
+      run.totals.bound_tests += s.bound_tests;
       if (run.outside)
         for (std::size_t k = 0; k < builtin.size(); ++k)
           if (results[builtin[k]] && results[builtin[k]]->pvs == results[m]->pvs) ++run.frames_equal_to[k].second;

@@ -57,6 +57,10 @@ struct VerificationOptions {
   // N's); every shard runs every method along the whole path, since an incremental method's
   // answer depends on the frames before. merge_verifications joins the shards.
   Shard shard;
+  // Hold every built-in method to conservativeness whatever it claims (`--hold-conservative`):
+  // a paper's claim the engine does not gate, e.g. that range detection (rdt) drops only what is
+  // outside the frustum. Replays carry the flag.
+  bool hold_conservative = false;
 };
 
 // One checked frame of one method, kept for the report page's map: the camera, the PVS, what the

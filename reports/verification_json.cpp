@@ -133,7 +133,8 @@ FrameSnapshot snapshot_from(const json& j, const std::string& what) {
 
 json statistics_json(const CullStatistics& s) {
   return {{"cells_tested", s.cells_tested},           {"buildings_tested", s.buildings_tested}, {"horizon_nodes", s.horizon_nodes},
-          {"occluders_applied", s.occluders_applied}, {"items_skipped", s.items_skipped},       {"guard_fires", s.guard_fires}};
+          {"occluders_applied", s.occluders_applied}, {"items_skipped", s.items_skipped},       {"guard_fires", s.guard_fires},
+          {"bound_tests", s.bound_tests}};
 }
 CullStatistics statistics_from(const json& j, const std::string& what) {
   const Reader r(j, what);
@@ -144,6 +145,7 @@ CullStatistics statistics_from(const json& j, const std::string& what) {
   s.occluders_applied = r.get<std::uint64_t>("occluders_applied");
   s.items_skipped = r.get<std::uint64_t>("items_skipped");
   s.guard_fires = r.get<std::uint64_t>("guard_fires");
+  s.bound_tests = j.contains("bound_tests") ? r.get<std::uint64_t>("bound_tests") : 0;  // files from before it was counted
   return s;
 }
 

@@ -45,6 +45,7 @@ Runner add_fuzz(CLI::App& app) {
   sub->add_option("--output,-o", f->output, "Also write the run's summary as JSON");
   sub->add_option("--work-dir", f->fuzz.work_dir, "Folder for each case's scene files (default: a temporary one)");
   sub->add_flag("--no-pixels", f->no_pixels, "Skip the pixel oracle for conservative subjects");
+  sub->add_flag("--hold-conservative", f->fuzz.hold_conservative, "Judge every built-in method as claiming conservativeness, whatever it claims: how a paper's claim the engine does not gate is checked (e.g. rdt)");
   add_shard_flag(*sub, f->fuzz.shard,
                  "Run shard K of N (e.g. 0/4) of the cases: the n-th case drawn is shard n mod N's; a shard stops at its own "
                  "first failure. Needs --output; `cullcheck merge` joins the N files into the unsharded run's summary");

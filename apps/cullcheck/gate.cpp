@@ -31,7 +31,7 @@ Runner add_gate(CLI::App& app) {
     std::int64_t frame = -1;
     double max_overestimation = 0.0;
     std::size_t oracle_stride = 1;
-    bool no_pixels = false, allow_empty_path = false;
+    bool no_pixels = false, allow_empty_path = false, hold_conservative = false;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand(
@@ -50,6 +50,7 @@ Runner add_gate(CLI::App& app) {
   sub->add_option("--oracle-stride", f->oracle_stride, "Check every n-th frame with the oracle")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t(1), std::size_t(1) << 40));
+  sub->add_flag("--hold-conservative", f->hold_conservative, "Judge every built-in method as claiming conservativeness, whatever it claims: how a paper's claim the engine does not gate is checked (e.g. rdt)");
   sub->add_flag("--no-pixels", f->no_pixels,
                 "Skip the pixel oracle (misdrawn pixels) for subjects that claim conservativeness; approximate ones always get it");
   sub->add_option("--max-overestimation", f->max_overestimation,
@@ -70,6 +71,7 @@ Runner add_gate(CLI::App& app) {
     options.oracle_stride = f->oracle_stride;
     options.max_replays = 10;
     options.pixels = !f->no_pixels;
+    options.hold_conservative = f->hold_conservative;
     if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags() + f->tuning.replay_flags();
     if (f->frame >= 0) {
       if (static_cast<std::size_t>(f->frame) >= path.frames.size())

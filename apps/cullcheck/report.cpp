@@ -29,6 +29,7 @@
 #include "reports/shrinking_claims.hpp"
 #include "reports/online_claims.hpp"
 #include "reports/online_culling.hpp"
+#include "reports/frustum_claims.hpp"
 #include "reports/radar_claims.hpp"
 #include "reports/radar_table.hpp"
 #include "reports/table_4_1.hpp"
@@ -272,7 +273,7 @@ Runner add_report(CLI::App& app) {
     parts.map_method = f->map_method;
     parts.map_frame = f->map_frame;
     for (auto search : {check_shadow_elevation_rule, check_image_space_pitch_roll, check_delta_horizon_claims, check_shrinking_claims,
-                        check_online_claims, check_radar_claims})
+                        check_online_claims, check_radar_claims, check_frustum_range_claims})
       for (ClaimCheck& c : search(f->claim_options)) parts.searched_claims.push_back(std::move(c));
     if (mine("region_sweep")) {
       parts.sections["region_sweep"] =

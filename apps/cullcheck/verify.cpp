@@ -22,6 +22,7 @@ Runner add_verify(CLI::App& app) {
     RegionFlags regions;
     std::string methods = "all", camera, output;
     Shard shard;
+    bool hold_conservative = false;
   };
   auto f = std::make_shared<Flags>();
   CLI::App* sub = app.add_subcommand("verify", "Hold methods to the oracle for one camera or a path; exit 1 on a violation");
@@ -32,6 +33,7 @@ Runner add_verify(CLI::App& app) {
   sub->add_option("--method", f->methods, "Comma-separated methods, or 'all'")->capture_default_str();
   sub->add_option("--camera", f->camera, "One camera as JSON (instead of a path)");
   f->regions.add(*sub, "none");
+  sub->add_flag("--hold-conservative", f->hold_conservative, "Judge every built-in method as claiming conservativeness, whatever it claims: how a paper's claim the engine does not gate is checked (e.g. rdt)");
   sub->add_option("--output,-o", f->output, "Also write the results as report.json (no claims ledger or sections)");
   add_shard_flag(*sub, f->shard,
                  "Check shard K of N (e.g. 0/4) of the frames: the n-th frame is shard n mod N's (every shard runs the methods "
@@ -51,6 +53,7 @@ Runner add_verify(CLI::App& app) {
     options.region_on_tiling = f->regions.placement == "tiling";
     if (f->camera.empty()) options.path_replay_flags = f->path.replay_flags() + f->tuning.replay_flags();
     options.shard = f->shard;
+    options.hold_conservative = f->hold_conservative;
     ReportParts parts;
     parts.verification = verify_path(scene, f->scene.source, path, methods, f->tuning.options, options);
     const PathVerification& v = parts.verification;

@@ -23,7 +23,7 @@ FuzzOptions soak(int budget, std::uint64_t seed) {
 
 TEST(Fuzzing, ConservativeMethodsAreTheOnesThatClaimIt) {
   const std::vector<std::string> names = conservative_method_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"frustum", "oh_os_conservative", "delta_h_guarded"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"frustum", "rdt_corrected", "radar_frustum", "oh_os_conservative", "delta_h_guarded"}));
 }
 
 // Pinned counts: the same seed draws the same cases on every machine, so a change in the case
@@ -38,6 +38,11 @@ TEST(Fuzzing, SoakCountsOracleCheckedFramesPerMethod) {
   EXPECT_EQ(r.checked_frames.at("oh_os_conservative"), 47u);
   EXPECT_EQ(r.skipped_frames.at("oh_os_conservative"), 13u);
   EXPECT_EQ(r.checked_frames.at("delta_h_guarded"), 47u);
+  // Frustum culling by ranges skips the orthographic frames (and would skip 360-degree ones).
+  for (const char* m : {"rdt_corrected", "radar_frustum"}) {
+    EXPECT_EQ(r.checked_frames.at(m), 54u) << m;
+    EXPECT_EQ(r.skipped_frames.at(m), 6u) << m;
+  }
   // Orthographic cameras and mesh scenes are drawn (horizon methods skip them, and say so).
   EXPECT_GT(r.kinds.at("orthographic"), 0);
   EXPECT_GT(r.scenes.at("openings"), 0);
@@ -46,7 +51,7 @@ TEST(Fuzzing, SoakCountsOracleCheckedFramesPerMethod) {
 TEST(Fuzzing, SoakClaimsOnePerMethodWithItsFrames) {
   const FuzzResult r = fuzz_subject(soak(10, 2));
   const std::vector<ClaimCheck> claims = fuzz_claims(r, "");
-  ASSERT_EQ(claims.size(), 3u);
+  ASSERT_EQ(claims.size(), 5u);
   for (const ClaimCheck& c : claims) {
     EXPECT_TRUE(c.holds) << c.id;
     EXPECT_EQ(c.frames_checked, r.checked_frames.at(c.method)) << c.id;
