@@ -213,8 +213,9 @@ TEST(RegionEcho, ErodedFloorsLieUnderTheGroundWithinTheRadius) {
         floor_binds += f.floors[tri] > x.z - f.drops[tri];
       }
     }
-    if (radius == 0.0)  // no erosion: a triangle's floor is the lowest of its cell's corners, no drop
+    if (radius == 0.0) {  // no erosion: a triangle's floor is the lowest of its cell's corners, no drop
       for (std::size_t tri = 0; tri < t.triangle_count(); ++tri) ASSERT_EQ(f.drops[tri], 0.0);
+    }
   }
   EXPECT_GT(checked, 3000u);
   EXPECT_GT(floor_binds, 100u);  // both bounds do work

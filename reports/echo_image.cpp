@@ -33,11 +33,6 @@ void for_each_pixel(const Terrain& terrain, const TerrainScene* buildings, Vec3 
     }
 }
 
-RgbImage echo(const Terrain& terrain, const TerrainScene* buildings, const std::vector<std::uint32_t>& visible, Vec3 transmitter,
-              double range, int size);
-RgbImage difference(const Terrain& terrain, const TerrainScene* buildings, const std::vector<std::uint32_t>& pvs,
-                    const std::vector<std::uint32_t>& witnessed, Vec3 transmitter, double range, int size);
-
 void draw_overlay(RgbImage& image, double range, int size) {
   // Rings at 1/5 .. 5/5 of the range, one pixel wide.
   const double centre = 0.5 * size, pixels_per_metre = size / (2 * range);
@@ -50,33 +45,6 @@ void draw_overlay(RgbImage& image, double range, int size) {
   const int c = size / 2;
   for (int d = -4; d <= 4; ++d) image.set(c + d, c, echo_colours::kTransmitter), image.set(c, c + d, echo_colours::kTransmitter);
 }
-
-}  // namespace
-
-std::int64_t triangle_at(const Terrain& t, Vec2 p) {
-  const double u = (p.x - t.corner.x) / t.dx, w = (p.y - t.corner.y) / t.dy;
-  if (!(u >= 0.0 && w >= 0.0 && u < t.nx - 1 && w < t.ny - 1)) return -1;
-  const auto i = std::uint32_t(u), j = std::uint32_t(w);
-  const std::size_t tri = 2 * (std::size_t(j) * (t.nx - 1) + i) + (u - i >= w - j ? 0 : 1);
-  return t.triangle_present(tri) ? std::int64_t(tri) : -1;
-}
-
-RgbImage echo_image(const Terrain& terrain, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size) {
-  return echo(terrain, nullptr, visible, transmitter, range, size);
-}
-RgbImage echo_image(const TerrainScene& scene, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size) {
-  return echo(scene.terrain, &scene, visible, transmitter, range, size);
-}
-RgbImage echo_difference_image(const Terrain& terrain, const std::vector<std::uint32_t>& pvs, const std::vector<std::uint32_t>& witnessed,
-                               Vec3 transmitter, double range, int size) {
-  return difference(terrain, nullptr, pvs, witnessed, transmitter, range, size);
-}
-RgbImage echo_difference_image(const TerrainScene& scene, const std::vector<std::uint32_t>& pvs, const std::vector<std::uint32_t>& witnessed,
-                               Vec3 transmitter, double range, int size) {
-  return difference(scene.terrain, &scene, pvs, witnessed, transmitter, range, size);
-}
-
-namespace {
 
 RgbImage echo(const Terrain& terrain, const TerrainScene* buildings, const std::vector<std::uint32_t>& visible, Vec3 transmitter,
               double range, int size) {
@@ -109,5 +77,28 @@ RgbImage difference(const Terrain& terrain, const TerrainScene* buildings, const
 }
 
 }  // namespace
+
+std::int64_t triangle_at(const Terrain& t, Vec2 p) {
+  const double u = (p.x - t.corner.x) / t.dx, w = (p.y - t.corner.y) / t.dy;
+  if (!(u >= 0.0 && w >= 0.0 && u < t.nx - 1 && w < t.ny - 1)) return -1;
+  const auto i = std::uint32_t(u), j = std::uint32_t(w);
+  const std::size_t tri = 2 * (std::size_t(j) * (t.nx - 1) + i) + (u - i >= w - j ? 0 : 1);
+  return t.triangle_present(tri) ? std::int64_t(tri) : -1;
+}
+
+RgbImage echo_image(const Terrain& terrain, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size) {
+  return echo(terrain, nullptr, visible, transmitter, range, size);
+}
+RgbImage echo_image(const TerrainScene& scene, const std::vector<std::uint32_t>& visible, Vec3 transmitter, double range, int size) {
+  return echo(scene.terrain, &scene, visible, transmitter, range, size);
+}
+RgbImage echo_difference_image(const Terrain& terrain, const std::vector<std::uint32_t>& pvs, const std::vector<std::uint32_t>& witnessed,
+                               Vec3 transmitter, double range, int size) {
+  return difference(terrain, nullptr, pvs, witnessed, transmitter, range, size);
+}
+RgbImage echo_difference_image(const TerrainScene& scene, const std::vector<std::uint32_t>& pvs, const std::vector<std::uint32_t>& witnessed,
+                               Vec3 transmitter, double range, int size) {
+  return difference(scene.terrain, &scene, pvs, witnessed, transmitter, range, size);
+}
 
 }  // namespace cullcheck

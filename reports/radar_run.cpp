@@ -141,12 +141,11 @@ nlohmann::json radar_run(const TerrainScene& scene, const std::string& summary, 
   const Terrain& terrain = scene.terrain;
   const Box3 bounds = terrain.bounds();
   const Vec2 at = o.at ? *o.at : bounds.plan().center();
-  double ground = terrain.height_at(at);
+  // The ground, or on a building its roof (a mast on the roof).
+  const double ground = standing_height(scene, at);
   if (!std::isfinite(ground))
     throw InputError("transmitter", "at", "(" + round_trip_text(at.x) + ", " + round_trip_text(at.y) + ") is off the terrain or over a NoData hole");
-  // On a building: a mast on its roof.
   const std::int64_t on = building_at(scene, at);
-  ground = standing_height(scene, at);
   if (!(o.height >= 0.0) || !std::isfinite(o.height)) throw InputError("transmitter", "height", "must be a finite height above ground, 0 or more");
   if (o.grid_x == 0 || o.grid_y == 0 || o.grid_x > 4096 || o.grid_y > 4096)
     throw InputError("radar", "grid", "cells each way must lie in [1, 4096]");
