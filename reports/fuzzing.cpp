@@ -170,6 +170,7 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
     result.ready.orthographic = true;
     result.ready.claim.conservative = true;
     result.built_in = true;
+    result.held_conservative = options.hold_conservative;
     result.methods = options.methods;
     for (std::size_t i = 0; i < options.methods.size(); ++i) result.subject_name += (i ? "," : "") + options.methods[i];
   } else {  // The handshake on a one-building scene tells what the subject takes.
@@ -277,6 +278,7 @@ FuzzResult fuzz_subject(const FuzzOptions& options) {
 nlohmann::json fuzz_json(const FuzzResult& r) {
   nlohmann::json j = {{"subject", r.subject_name},
                       {"claims", r.ready.claim.conservative ? "conservative" : "approximate"},
+                      {"held_conservative", r.held_conservative},
                       {"cases", r.cases},
                       {"shrink_runs", r.shrink_runs},
                       {"shrinks_accepted", r.shrinks_accepted},
@@ -451,7 +453,7 @@ nlohmann::json fuzz_shard_json(const FuzzResult& r, const FuzzOptions& options) 
                 {"index", options.shard.index},
                 {"count", options.shard.count},
                 {"identity", {{"subject", options.subject}, {"methods", options.methods}, {"budget", options.budget},
-                              {"seed", options.seed}, {"pixels", options.pixels}}},
+                              {"seed", options.seed}, {"pixels", options.pixels}, {"hold_conservative", options.hold_conservative}}},
                 {"first_failing_case", r.first_failing_case},
                 {"per_case", r.per_case}};
   return j;

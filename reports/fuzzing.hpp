@@ -60,6 +60,7 @@ struct FuzzFailure {
 struct FuzzResult {
   std::string subject_name;     // the subject's name, or the built-in methods' names joined by commas
   bool built_in = false;        // built-in methods (FuzzOptions::methods) rather than a subject
+  bool held_conservative = false;  // FuzzOptions::hold_conservative: judged conservative whatever they claim
   std::vector<std::string> methods;
   protocol::Ready ready;
   int cases = 0;                // cases run up to and including the first failure (all, when none failed)
