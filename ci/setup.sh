@@ -16,7 +16,8 @@ cmake --build --preset default -j "$(nproc)"
 # report.html (reports/html/: opens offline) and its screenshot, with the region radius sweep
 # and the knobs' sweeps on its Pareto plot; thesis Table 3.3 in kind (radar echo over a generated
 # terrain of the thesis's size, and over the Rainier elevation model when ../shared/data holds it),
-# its echo PNGs beside report.json.
+# its echo PNGs beside report.json; polar diagrams (Ortega et al.) against CGAL's exact
+# visibility polygon on the default city and on a city like the paper's.
 radar_dem=()
 rainier=../shared/data/real/dem_mt_rainier/mt_rainier_90m.tif
 [ -f "$rainier" ] && radar_dem=(--radar-dem "$rainier")
@@ -24,7 +25,7 @@ rainier=../shared/data/real/dem_mt_rainier/mt_rainier_90m.tif
   --vbaoi --subject build/examples/subjects/builtin_subject \
   --fuzz-subject build/examples/subjects/buggy_sphere_subject --fuzz-budget 200 --fuzz-seed 1 --soak-budget 2000 \
   --region-sweep 0.5,1,1.41,2,4 --knob-sweep horizon_bins=1024,4096,16384 --knob-sweep quadtree_leaf_size=2,8,32 \
-  --knob-sweep delta_radius=0.25,0.5,1 --radar-table "${radar_dem[@]}" --output report.json --html report.html
+  --knob-sweep delta_radius=0.25,0.5,1 --radar-table "${radar_dem[@]}" --polar-table --output report.json --html report.html
 # The page's screenshot beside it (headless Chromium; the browser test keeps one of a short run too).
 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --hide-scrollbars --window-size=1280,2400 \
   --screenshot="$PWD/report-page.png" "file://$PWD/report.html" 2>/dev/null >/dev/null && echo "wrote report-page.png"

@@ -12,6 +12,7 @@
 #include "engine/shrinking/region_shrinking.hpp"
 #include "engine/image_space/image_space_horizon.hpp"
 #include "engine/online_image_space/online_culling.hpp"
+#include "engine/polar_diagram/polar_culling.hpp"
 
 namespace cullcheck {
 namespace {
@@ -40,7 +41,7 @@ std::string method_unavailable_reason(std::string_view name, const Scene& scene)
 }
 
 std::vector<std::string> method_names() { return {"frustum", "rdt", "rdt_corrected", "radar_frustum", "oh_is", "oh_os_thesis", "oh_os_conservative", "delta_h_thesis", "delta_h_guarded", "online_is",
-                                                 "online_is_guarded"}; }
+                                                 "online_is_guarded", "polar_diagram"}; }
 
 std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& scene, const MethodOptions& options) {
   if (const std::string why = method_unavailable_reason(name, scene); !why.empty()) {
@@ -61,6 +62,7 @@ std::unique_ptr<CullingMethod> make_method(std::string_view name, const Scene& s
     return std::make_unique<OnlineImageSpaceCulling>(scene, OnlineImageSpaceCulling::Variant::published, options.online);
   if (name == "online_is_guarded")
     return std::make_unique<OnlineImageSpaceCulling>(scene, OnlineImageSpaceCulling::Variant::guarded, options.online);
+  if (name == "polar_diagram") return std::make_unique<PolarDiagramCulling>(scene);
   throw unknown("method", name, method_names());
 }
 

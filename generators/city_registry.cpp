@@ -5,6 +5,7 @@
 #include "generators/city.hpp"
 #include "generators/kept_cases.hpp"
 #include "generators/params_json.hpp"
+#include "generators/plan_scenes.hpp"
 
 namespace cullcheck::generators {
 namespace {
@@ -37,7 +38,7 @@ std::optional<ManhattanParams> manhattan_defaults(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& city_generator_names() {
-  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "openings", "kept"};
+  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "openings", "kept", "slot_city", "star_block_city"};
   return names;
 }
 
@@ -48,6 +49,8 @@ nlohmann::json resolved_city_params(const std::string& name, const nlohmann::jso
   if (name == "thesis") return params_to_json(overlaid(ThesisParams{}, params, name));
   if (name == "openings") return params_to_json(overlaid(OpeningsParams{}, params, name));
   if (name == "kept") return params_to_json(overlaid(KeptParams{}, params, name));
+  if (name == "slot_city") return params_to_json(overlaid(SlotCityParams{}, params, name));
+  if (name == "star_block_city") return params_to_json(overlaid(StarBlockParams{}, params, name));
   unknown_generator(name);
 }
 
@@ -63,6 +66,8 @@ Scene make_city(const std::string& name, std::uint64_t seed, const nlohmann::jso
   if (name == "thesis") return thesis_city(overlaid(ThesisParams{}, params, name), seed);
   if (name == "openings") return openings_city(overlaid(OpeningsParams{}, params, name), seed);
   if (name == "kept") return kept_city(overlaid(KeptParams{}, params, name));
+  if (name == "slot_city") return slot_city(overlaid(SlotCityParams{}, params, name), seed);
+  if (name == "star_block_city") return star_block_city(overlaid(StarBlockParams{}, params, name), seed);
   unknown_generator(name);
 }
 

@@ -288,7 +288,9 @@ TEST(Cities, BadParametersAreTypedErrors) {
   expect_error("kept", {{"case", "no_such_case"}}, "case");
   expect_error("kept", {{"case", 3}}, "case");
   EXPECT_NO_THROW(make_city("kept", 0, {{"case", "slab_across_the_disc"}}));
-  EXPECT_EQ(city_generator_names().size(), 8u);
+  expect_error("slot_city", {{"slots_x", 0}}, "slots_x");
+  expect_error("star_block_city", {{"street", 80}}, "street");
+  EXPECT_EQ(city_generator_names().size(), 10u);
 }
 
 // --- Camera paths ---------------------------------------------------------------------------------

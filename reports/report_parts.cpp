@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "reports/polar_table.hpp"
 #include "reports/radar_table.hpp"
 #include "reports/report.hpp"
 #include "reports/shard_merge.hpp"
@@ -16,7 +17,7 @@ namespace cullcheck {
 using nlohmann::json;
 
 const std::vector<std::string>& report_section_names() {
-  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "radar_echo", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
+  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "radar_echo", "polar_diagram", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
   return names;
 }
 
@@ -30,6 +31,7 @@ std::uint64_t section_gate_violations(const json& document) {
       if (r["claims_conservative"].get<bool>()) n += r["violations"].get<std::uint64_t>();
   if (document.contains("vbaoi")) n += vbaoi_gate_violations(document["vbaoi"]);
   if (document.contains("radar_echo")) n += radar_table_violations(document["radar_echo"]);
+  if (document.contains("polar_diagram")) n += polar_table_mismatches(document["polar_diagram"]);
   return n;
 }
 

@@ -31,6 +31,8 @@
 #include "reports/online_culling.hpp"
 #include "reports/frustum_claims.hpp"
 #include "reports/radar_claims.hpp"
+#include "reports/polar_claims.hpp"
+#include "reports/polar_table.hpp"
 #include "reports/radar_table.hpp"
 #include "reports/table_4_1.hpp"
 #include "reports/vbaoi.hpp"
@@ -49,6 +51,8 @@ Runner add_report(CLI::App& app) {
     OnlineTableOptions online_table_options;
     bool radar_table = false;
     RadarTableOptions radar_table_options;
+    bool polar_table = false;
+    PolarTableOptions polar_table_options;
     RegionFlags regions;
     std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
     std::optional<std::size_t> map_frame;
@@ -154,6 +158,14 @@ Runner add_report(CLI::App& app) {
                   "Cities of --online-table: blocks each way (20 lots a block; default 6,17,33,66); the sweeps use the third")
       ->delimiter(',')
       ->check(CLI::Range(1, 400));
+  sub->add_flag("--polar-table", f->polar_table,
+                "Also measure polar diagrams (Ortega et al.) against CGAL's exact visibility polygon: construction of the four "
+                "diagrams on the default city and on a city like the paper's (600 non-convex buildings, 45,000 vertices), query "
+                "time per frame along level walks (90 and 360 degrees) with both visible sets compared (a difference fails the "
+                "gate), rays against 2k, query time by visible count; into report.json's \"polar_diagram\"");
+  sub->add_option("--polar-frames", f->polar_table_options.frames, "Walk frames per city and view of --polar-table")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   sub->add_flag("--radar-table", f->radar_table,
                 "Also measure radar echo over terrain as thesis ch. 3.3 did: Table 3.3 on a generated terrain of the thesis's size "
                 "(--radar-grids, 60 and 360 degrees, both rules, the oracle's witnessed count), the same on --radar-dem, growth with "
@@ -244,7 +256,7 @@ Runner add_report(CLI::App& app) {
     std::vector<std::string> asked;
     const std::map<std::string, bool> wanted = {
         {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41}, {"online_culling", f->online_table},
-        {"radar_echo", f->radar_table},
+        {"radar_echo", f->radar_table}, {"polar_diagram", f->polar_table},
         {"vbaoi", vbaoi_scene.has_value()},                {"scaling", !f->scaling_grids.empty()}, {"fuzz", !f->fuzz.subject.empty()},
         {"soak", f->soak.budget > 0},                      {"benchmarks", !f->benchmark_json.empty()}};
     for (const std::string& name : report_section_names())
@@ -273,7 +285,7 @@ Runner add_report(CLI::App& app) {
     parts.map_method = f->map_method;
     parts.map_frame = f->map_frame;
     for (auto search : {check_shadow_elevation_rule, check_image_space_pitch_roll, check_delta_horizon_claims, check_shrinking_claims,
-                        check_online_claims, check_radar_claims, check_frustum_range_claims})
+                        check_online_claims, check_radar_claims, check_frustum_range_claims, check_polar_claims})
       for (ClaimCheck& c : search(f->claim_options)) parts.searched_claims.push_back(std::move(c));
     if (mine("region_sweep")) {
       parts.sections["region_sweep"] =
@@ -305,6 +317,10 @@ Runner add_report(CLI::App& app) {
       f->radar_table_options.echo_prefix = (dir / "radar_echo").string();
       parts.sections["radar_echo"] = radar_table_3_3(f->radar_table_options);
       std::cout << radar_table_3_3_text(parts.sections["radar_echo"]);
+    }
+    if (mine("polar_diagram")) {
+      parts.sections["polar_diagram"] = polar_diagram_table(f->polar_table_options);
+      std::cout << polar_diagram_table_text(parts.sections["polar_diagram"]);
     }
     if (f->view_cells) {  // every shard: its share of the cells
       f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;

@@ -100,6 +100,10 @@ const std::vector<PinnedScene>& pinned_scenes() {
       {"openings", 2, R"({"blocks_x":2,"blocks_y":1})", 29, "0x87b4c4e2cb675001"},
       {"kept", 0, R"({"case":"low_planter"})", 2, "0x0ed60efec5cde803"},
       {"kept", 0, R"({"case":"slab_across_the_disc"})", 2, "0x210fbe7974572ca5"},
+      {"slot_city", 1, "{}", 11, "0x0fd9721b6c32664c"},
+      {"slot_city", 7, R"({"slots_x":5,"slots_y":3})", 10, "0x738245bbc997349e"},
+      {"star_block_city", 1, R"({"count":20})", 20, "0xb69409fc603d36d1"},
+      {"star_block_city", 2, R"({"count":12,"vertices":9})", 12, "0xd65d878bf9a21c60"},
   };
   return pins;
 }

@@ -266,6 +266,32 @@ std::string radar_echo_section(const json& report) {
   return out + "</section>\n";
 }
 
+std::string polar_diagram_section(const json& report) {
+  const json& t = member(report, "polar_diagram");
+  if (!t.is_object()) return "";
+  std::string out =
+      "<section id=\"polar-diagram\"><h2>Polar diagrams (Ortega et al.) against CGAL's visibility polygon</h2>\n<p class=\"note\">"
+      "Plan view, level walks. Both sides exact: any frame where the visible sets differ is counted as a mismatch and fails the "
+      "gate. The paper builds each diagram in 100 ms (600 buildings, 45,000 vertices, Pentium IV 2.4 GHz) and throws O(2k) rays "
+      "for k visible buildings.</p>\n<table>" +
+      header({"<city", "buildings", "vertices", "four diagrams ms", "one diagram ms", "fan grids ms", "CGAL build ms"});
+  for (const json& c : member(t, "cities"))
+    out += "<tr>" + cell(escape(text_of(c, "scene")), "name") + cell(count(value_of(c, "buildings"))) + cell(count(value_of(c, "vertices"))) +
+           cell(number(value_of(c, "diagrams_ms"))) + cell(number(value_of(c, "one_diagram_ms"))) + cell(number(value_of(c, "fan_build_ms"))) +
+           cell(number(value_of(c, "cgal_build_ms"))) + "</tr>\n";
+  out += "</table>\n<table>" + header({"<city", "view", "frames", "fan ms median", "fan ms p95", "CGAL ms median", "CGAL / fan", "k",
+                                        "visible edges", "rays", "rays / 2k", "mismatches"});
+  for (const json& c : member(t, "cities"))
+    for (const json& w : member(c, "walks"))
+      out += "<tr>" + cell(escape(text_of(c, "scene")), "name") + cell(count(value_of(w, "hfov_deg"))) + cell(count(value_of(w, "frames_compared"))) +
+             cell(number(value_of(w, "fan_ms_median"))) + cell(number(value_of(w, "fan_ms_p95"))) + cell(number(value_of(w, "cgal_ms_median"))) +
+             cell(number(value_of(w, "cgal_over_fan_median"))) + cell(number(value_of(w, "visible_mean"))) +
+             cell(number(value_of(w, "visible_edges_mean"))) + cell(number(value_of(w, "rays_mean"))) +
+             cell(number(value_of(w, "rays_per_2k_median"))) + violations_cell(value_of(w, "mismatches")) + "</tr>\n";
+  out += "</table>\n";
+  return out + "</section>\n";
+}
+
 std::string regions_section(const json& report) {
   const json& regions = member(report, "regions");
   if (!regions.is_array() || regions.empty()) return "";

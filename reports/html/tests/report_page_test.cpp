@@ -123,6 +123,23 @@ TEST(ReportPage, ShowsTheRadarEchoTableWhenTheReportHasIt) {
       << page.substr(std::min(page.size(), page.find("Moving platform")), 900);
 }
 
+// cullcheck report --polar-table's section: construction per city, the walks with mismatches.
+TEST(ReportPage, ShowsThePolarDiagramTableWhenTheReportHasIt) {
+  json report = small_report(true);
+  EXPECT_EQ(report_page(report, {}).find("id=\"polar-diagram\""), std::string::npos);
+  report["polar_diagram"] = {
+      {"cities", json::array({{{"scene", "star_block_city"}, {"buildings", 600}, {"vertices", 45000}, {"diagrams_ms", 66.9},
+                               {"one_diagram_ms", 16.7}, {"fan_build_ms", 70.5}, {"cgal_build_ms", 520.2},
+                               {"walks", json::array({{{"hfov_deg", 90}, {"frames_compared", 200}, {"fan_ms_median", 0.206},
+                                                       {"fan_ms_p95", 0.661}, {"cgal_ms_median", 14.0}, {"cgal_over_fan_median", 68.0},
+                                                       {"visible_mean", 14.9}, {"visible_edges_mean", 51.1}, {"rays_mean", 52.8},
+                                                       {"rays_per_2k_median", 2.17}, {"mismatches", 1}}})}}})}};
+  const std::string page = report_page(report, {});
+  EXPECT_NE(page.find("<tr><td class=\"name\">star_block_city</td><td>600</td><td>45,000</td><td>66.9</td>"), std::string::npos);
+  EXPECT_NE(page.find("<td>68.0</td>"), std::string::npos);
+  EXPECT_NE(page.find("class=\"bad\""), std::string::npos) << "a mismatch shows as a violation";
+}
+
 TEST(ReportPage, CarriesTheMapInlineOrSaysWhyNot) {
   json report = small_report(true);
   report["map"] = {{"method", "oh_os_conservative"}, {"frame", 2}, {"chosen_by", "test"}, {"pvs", {1, 2}}, {"seen", {1}},
