@@ -116,6 +116,15 @@ Building box_building(ObjectId id, double x0, double y0, double x1, double y1, d
   return b;
 }
 
+Building footprint_building(ObjectId id, std::vector<Vec2> footprint, double height) {
+  Building b;
+  b.id = id;
+  b.footprint = std::move(footprint);
+  b.height = height;
+  validate_and_finish(b);
+  return b;
+}
+
 void rebase_if_far(Scene& scene) {
   if (scene.object_count() == 0) return;
   const Box2 box = scene.bounds().plan();

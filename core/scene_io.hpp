@@ -61,6 +61,8 @@ void validate_and_finish(Building& b);
 std::size_t validate_and_finish(MeshObject& m, bool drop_degenerate = false);
 // A validated building whose footprint is the axis-aligned rectangle [x0, x1] x [y0, y1].
 Building box_building(ObjectId id, double x0, double y0, double x1, double y1, double height);
+// A validated building on a counter-clockwise footprint (InputError when it is not simple).
+Building footprint_building(ObjectId id, std::vector<Vec2> footprint, double height);
 // Moves every coordinate so the scene's centre sits near (0, 0) when it is far from the origin.
 void rebase_if_far(Scene& scene);
 

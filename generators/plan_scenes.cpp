@@ -17,12 +17,7 @@ double half_metres(Random& rng, double lo, double hi) {
 }
 
 void add(Scene& s, std::vector<Vec2> ring, double height) {
-  Building b;
-  b.id = static_cast<ObjectId>(s.buildings.size());
-  b.footprint = std::move(ring);
-  b.height = height;
-  validate_and_finish(b);
-  s.buildings.push_back(std::move(b));
+  s.buildings.push_back(footprint_building(static_cast<ObjectId>(s.buildings.size()), std::move(ring), height));
 }
 
 std::vector<Vec2> star(Vec2 c, int n, double r_lo, double r_hi, Random& rng, bool alternate) {

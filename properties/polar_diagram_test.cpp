@@ -279,15 +279,6 @@ TEST(PolarFan, WithoutWedgeCertificatesThePropertyFails) {
   EXPECT_FALSE(outcome.held);
 }
 
-Building footprint_building(ObjectId id, std::vector<Vec2> footprint, double height) {
-  Building b;
-  b.id = id;
-  b.footprint = std::move(footprint);
-  b.height = height;
-  validate_and_finish(b);
-  return b;
-}
-
 // Fig. 5 in kind: a U-shaped building opening towards the eye with a kiosk in its pocket. The
 // first ray meets the U's left arm, whose far end is the right arm's tip; the kiosk stands in
 // the wedge between, in front of no ray. The certificate finds it.

@@ -43,15 +43,6 @@ Scene scene_of_buildings(std::vector<Building> buildings) {
   return s;
 }
 
-Building footprint_building(ObjectId id, std::vector<Vec2> footprint, double height) {
-  Building b;
-  b.id = id;
-  b.footprint = std::move(footprint);
-  b.height = height;
-  validate_and_finish(b);
-  return b;
-}
-
 std::vector<ObjectId> pvs_of(const std::string& method, const Scene& scene, const Camera& camera) {
   return make_method(method, scene)->cull(camera).pvs;
 }
