@@ -107,7 +107,7 @@ void validate(const PlazaCrossingParams& p);
 // Walks the streets of the Manhattan grid that manhattan_city(city, ...) builds (any seed:
 // streets do not depend on the city's seed).
 CameraPath street_walk(const ManhattanParams& city, const StreetWalkParams& walk, std::uint64_t seed);
-// The same for a scene made by manhattan, plaza, default, thesis or openings (streets read from its
+// The same for a scene made by manhattan, plaza, default, thesis, openings or detailed (streets read from its
 // provenance); any other scene (irregular, scatter, an imported city) gets free_space_walk.
 CameraPath street_walk(const Scene& scene, const StreetWalkParams& walk, std::uint64_t seed);
 // A pedestrian walk through the free-space cells of any scene (free_space_walk.cpp): the same

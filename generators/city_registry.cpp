@@ -3,6 +3,7 @@
 
 #include "core/errors.hpp"
 #include "generators/city.hpp"
+#include "generators/detailed_buildings.hpp"
 #include "generators/kept_cases.hpp"
 #include "generators/params_json.hpp"
 #include "generators/plan_scenes.hpp"
@@ -38,7 +39,7 @@ std::optional<ManhattanParams> manhattan_defaults(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& city_generator_names() {
-  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "openings", "kept", "slot_city", "star_block_city"};
+  static const std::vector<std::string> names = {"default", "manhattan", "plaza", "scatter", "irregular", "thesis", "openings", "kept", "slot_city", "star_block_city", "detailed"};
   return names;
 }
 
@@ -51,6 +52,7 @@ nlohmann::json resolved_city_params(const std::string& name, const nlohmann::jso
   if (name == "kept") return params_to_json(overlaid(KeptParams{}, params, name));
   if (name == "slot_city") return params_to_json(overlaid(SlotCityParams{}, params, name));
   if (name == "star_block_city") return params_to_json(overlaid(StarBlockParams{}, params, name));
+  if (name == "detailed") return params_to_json(overlaid(DetailedCityParams{}, params, name));
   unknown_generator(name);
 }
 
@@ -68,6 +70,7 @@ Scene make_city(const std::string& name, std::uint64_t seed, const nlohmann::jso
   if (name == "kept") return kept_city(overlaid(KeptParams{}, params, name));
   if (name == "slot_city") return slot_city(overlaid(SlotCityParams{}, params, name), seed);
   if (name == "star_block_city") return star_block_city(overlaid(StarBlockParams{}, params, name), seed);
+  if (name == "detailed") return detailed_city(overlaid(DetailedCityParams{}, params, name), seed);
   unknown_generator(name);
 }
 
@@ -91,6 +94,12 @@ std::optional<ManhattanParams> manhattan_params_of(const Scene& scene) {
     ManhattanParams m;
     m.blocks_x = o.blocks_x, m.blocks_y = o.blocks_y, m.block_size = o.block_size, m.street_width = o.street_width;
     return m;
+  }
+  if (scene.provenance.generator == "detailed") {  // detailed meshes on a Manhattan layout
+    DetailedCityParams d;
+    overlay_params_json(d, stored, "scene", "provenance.parameters of generator detailed");
+    validate(d);
+    return d.layout;
   }
   std::optional<ManhattanParams> p = manhattan_defaults(scene.provenance.generator);
   if (!p) return std::nullopt;

@@ -6,6 +6,7 @@
 
 #include "core/random.hpp"
 #include "core/scene_io.hpp"
+#include "generators/grid_snap.hpp"
 #include "generators/param_checks.hpp"
 #include "generators/params_json.hpp"
 
@@ -26,7 +27,7 @@ std::vector<Vec2> star(Vec2 c, int n, double r_lo, double r_hi, Random& rng, boo
   for (int k = 0; k < n; ++k) {
     const double a = phase + 2 * M_PI * k / n;
     const double r = alternate ? (k % 2 ? r_lo : r_hi) * rng.uniform_real(0.9, 1.0) : rng.uniform_real(r_lo, r_hi);
-    ring.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+    ring.push_back(snap_mm(Vec2{c.x + r * std::cos(a), c.y + r * std::sin(a)}));  // libm tails differ: whole mm
   }
   return ring;
 }
@@ -95,7 +96,7 @@ Scene star_block_city(const StarBlockParams& p, std::uint64_t seed) {
   for (int k = 0; k < p.count; ++k) {
     Random rng = Random::stream(seed, 2, static_cast<std::uint64_t>(k));
     const Vec2 c{(k % columns) * p.block, (k / columns) * p.block};
-    add(s, star(c, p.vertices, 0.45 * r, r, rng, false), rng.uniform_real(p.min_height, p.max_height));
+    add(s, star(c, p.vertices, 0.45 * r, r, rng, false), snap_mm(rng.uniform_real(p.min_height, p.max_height)));
   }
   s.provenance = {"star_block_city", seed, params_to_json(p).dump()};
   return s;

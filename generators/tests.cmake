@@ -25,7 +25,8 @@ endif()
 # The generated terrains' tests (tests/terrain_gen_test.cpp) are plain GoogleTest too, and ride along.
 if(TARGET GTest::gtest)
   add_executable(generator_pins_test ${CMAKE_CURRENT_LIST_DIR}/tests/pinned_streams_test.cpp
-                                    ${CMAKE_CURRENT_LIST_DIR}/tests/terrain_gen_test.cpp)
+                                    ${CMAKE_CURRENT_LIST_DIR}/tests/terrain_gen_test.cpp
+                                    ${CMAKE_CURRENT_LIST_DIR}/tests/detailed_buildings_test.cpp)
   target_link_libraries(generator_pins_test PRIVATE cullcheck_generators GTest::gtest_main cullcheck_warnings)
   add_test(NAME generator_pins_test COMMAND generator_pins_test)
   set_tests_properties(generator_pins_test PROPERTIES LABELS generators)

@@ -290,7 +290,7 @@ TEST(Cities, BadParametersAreTypedErrors) {
   EXPECT_NO_THROW(make_city("kept", 0, {{"case", "slab_across_the_disc"}}));
   expect_error("slot_city", {{"slots_x", 0}}, "slots_x");
   expect_error("star_block_city", {{"street", 80}}, "street");
-  EXPECT_EQ(city_generator_names().size(), 10u);
+  EXPECT_EQ(city_generator_names().size(), 11u);
 }
 
 // --- Camera paths ---------------------------------------------------------------------------------
