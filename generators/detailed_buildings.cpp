@@ -219,9 +219,10 @@ MeshObject detailed_building(ObjectId id, Vec2 lo, Vec2 hi, double height, const
   m.name = "building " + std::to_string(id);
   const double w = hi.x - lo.x, d = hi.y - lo.y, thin = std::min(w, d);
   FacadeSpec f;
-  // Facades differ in grain: bays up to six times the nominal width (log-uniform), so triangle
-  // counts spread from about a hundred to the cap.
-  f.bay_width = p.bay_width * std::exp(rng.uniform_real(0.0, std::log(6.0)));
+  // Facades differ in grain: bays up to six times the nominal width (mostly narrow), so triangle
+  // counts spread from about a hundred to the cap. Plain arithmetic, no libm: the same on every build.
+  const double grain = rng.uniform01();
+  f.bay_width = p.bay_width * (1.0 + 5.0 * grain * grain);
   f.window_share = p.window_share;
   f.depth = std::min(p.window_depth, 0.25 * thin);
   const double draw_kind = rng.uniform01(), draw_roof = rng.uniform01(), draw_arcade = rng.uniform01();

@@ -96,7 +96,10 @@ Scene star_block_city(const StarBlockParams& p, std::uint64_t seed) {
   for (int k = 0; k < p.count; ++k) {
     Random rng = Random::stream(seed, 2, static_cast<std::uint64_t>(k));
     const Vec2 c{(k % columns) * p.block, (k / columns) * p.block};
-    add(s, star(c, p.vertices, 0.45 * r, r, rng, false), snap_mm(rng.uniform_real(p.min_height, p.max_height)));
+    // Two draws in a fixed order (function arguments are evaluated in either order).
+    std::vector<Vec2> ring = star(c, p.vertices, 0.45 * r, r, rng, false);
+    const double height = snap_mm(rng.uniform_real(p.min_height, p.max_height));
+    add(s, std::move(ring), height);
   }
   s.provenance = {"star_block_city", seed, params_to_json(p).dump()};
   return s;

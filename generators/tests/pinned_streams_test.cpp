@@ -102,10 +102,10 @@ const std::vector<PinnedScene>& pinned_scenes() {
       {"kept", 0, R"({"case":"slab_across_the_disc"})", 2, "0x210fbe7974572ca5"},
       {"slot_city", 1, "{}", 11, "0x58f7766151964bc8"},
       {"slot_city", 7, R"({"slots_x":5,"slots_y":3})", 10, "0x4348700a903f7d23"},
-      {"star_block_city", 1, R"({"count":20})", 20, "0x75b5e32ab6c67cf3"},
-      {"star_block_city", 2, R"({"count":12,"vertices":9})", 12, "0x12305179eae47aed"},
-      {"detailed", 1, R"({"blocks_x":2,"blocks_y":2,"buildings_per_block":2})", 8, "0x44572da29724eb20"},
-      {"detailed", 4, R"({"blocks_x":3,"blocks_y":1,"tower_fraction":0.5,"max_height":60})", 18, "0xaebbd63cd024d93d"},
+      {"star_block_city", 1, R"({"count":20})", 20, "0xa753f6cc1a4b97d9"},
+      {"star_block_city", 2, R"({"count":12,"vertices":9})", 12, "0x561c2d2b5b4d3719"},
+      {"detailed", 1, R"({"blocks_x":2,"blocks_y":2,"buildings_per_block":2})", 8, "0x24c5984e448c3d63"},
+      {"detailed", 4, R"({"blocks_x":3,"blocks_y":1,"tower_fraction":0.5,"max_height":60})", 18, "0xf77973cc74fbe890"},
   };
   return pins;
 }
