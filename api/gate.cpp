@@ -9,16 +9,6 @@
 #include "oracle/oracle.hpp"
 
 namespace cullcheck {
-namespace {
-
-std::string ids_text(const std::vector<ObjectId>& ids) {
-  std::string out = "[";
-  for (std::size_t i = 0; i < ids.size(); ++i) out += (i ? "," : "") + std::to_string(ids[i]);
-  return out + "]";
-}
-
-}  // namespace
-
 struct Gate::Impl {
   Scene scene;
   GateOptions options;

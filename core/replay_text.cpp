@@ -25,4 +25,10 @@ std::string camera_arg(const Camera& camera) {
   return shell_quote(text);
 }
 
+std::string ids_text(const std::vector<ObjectId>& ids) {
+  std::string out = "[";
+  for (ObjectId id : ids) out += (out.size() > 1 ? "," : "") + std::to_string(id);
+  return out + "]";
+}
+
 }  // namespace cullcheck

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/camera.hpp"
+#include "core/scene.hpp"
 
 namespace cullcheck {
 
@@ -15,5 +17,7 @@ std::string shell_quote(const std::string& text);
 std::string round_trip_text(double value);
 // A camera as one shell-quoted line of camera JSON, e.g. for `--camera`.
 std::string camera_arg(const Camera& camera);
+// Object ids as "[1,4,9]", for a failure's detail.
+std::string ids_text(const std::vector<ObjectId>& ids);
 
 }  // namespace cullcheck

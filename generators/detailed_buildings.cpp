@@ -112,23 +112,25 @@ void relief_box(MeshObject& mesh, Vec2 lo, Vec2 hi, double z0, double z1, const 
   Solid s(mesh);
   const Vec2 corner[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};  // counter-clockwise seen from above
   const std::vector<double> zs = facade_rows(z0, z1, f);
+  // Each wall's length (axis-aligned walls), whether it has windows, and its columns.
+  double length[4];
+  bool windows[4];
+  std::vector<double> columns[4];
   // Recesses stay shallower than half the wall left beside a window, so the recesses of two
   // walls meeting at a corner never touch.
   double depth = f.depth;
   for (int k = 0; k < 4; ++k) {
-    const double length = std::abs(corner[(k + 1) % 4].x - corner[k].x) + std::abs(corner[(k + 1) % 4].y - corner[k].y);
-    if (!wall_has_windows(length, f)) continue;
-    const std::vector<double> xs = wall_columns(length, f, true);
-    depth = std::min(depth, 0.45 * xs[1]);
+    length[k] = std::abs(corner[(k + 1) % 4].x - corner[k].x) + std::abs(corner[(k + 1) % 4].y - corner[k].y);
+    windows[k] = wall_has_windows(length[k], f);
+    columns[k] = wall_columns(length[k], f, windows[k]);
+    if (windows[k]) depth = std::min(depth, 0.45 * columns[k][1]);
   }
   std::vector<Vec3> top, bottom;
   for (int k = 0; k < 4; ++k) {
     const Vec2 a = corner[k], b = corner[(k + 1) % 4];
-    const double length = std::abs(b.x - a.x) + std::abs(b.y - a.y);  // axis-aligned walls
-    const Vec2 u{(b.x - a.x) / length, (b.y - a.y) / length};
+    const Vec2 u{(b.x - a.x) / length[k], (b.y - a.y) / length[k]};
     const Vec3 n = cross(Vec3{u.x, u.y, 0.0}, kUp);  // outward (walls run counter-clockwise)
-    const bool windows = wall_has_windows(length, f);
-    const std::vector<double> xs = wall_columns(length, f, windows);
+    const std::vector<double>& xs = columns[k];
     // Positions along the wall, the ends exactly the shared corners.
     auto plan_at = [&](std::size_t i) {
       if (i == 0) return a;
@@ -139,10 +141,10 @@ void relief_box(MeshObject& mesh, Vec2 lo, Vec2 hi, double z0, double z1, const 
       const Vec2 p0 = plan_at(i), p1 = plan_at(i + 1);
       top.push_back({p0.x, p0.y, z1});
       bottom.push_back({p0.x, p0.y, z0});
-      const bool window_column = windows && i % 3 == 1;
+      const bool window_column = windows[k] && i % 3 == 1;
       for (std::size_t j = 0; j + 1 < zs.size(); ++j) {
         const Vec3 A{p0.x, p0.y, zs[j]}, B{p1.x, p1.y, zs[j]}, C{p1.x, p1.y, zs[j + 1]}, D{p0.x, p0.y, zs[j + 1]};
-        if (!(window_column && f.windows && j % 3 == 1)) {
+        if (!(window_column && j % 3 == 1)) {
           s.quad(A, B, C, D, n);
           continue;
         }
@@ -166,9 +168,8 @@ void relief_box(MeshObject& mesh, Vec2 lo, Vec2 hi, double z0, double z1, const 
 void roof(MeshObject& mesh, Vec2 lo, Vec2 hi, double z, double rise, bool hipped) {
   Solid s(mesh);
   const bool along_x = hi.x - lo.x >= hi.y - lo.y;
-  // Local (u along the ridge, v across) to world, and the same for directions.
+  // Local (u along the ridge, v across) to world, for points and directions alike.
   auto at = [&](double u, double v, double h) { return along_x ? Vec3{u, v, h} : Vec3{v, u, h}; };
-  auto dir = [&](double u, double v, double h) { return along_x ? Vec3{u, v, h} : Vec3{v, u, h}; };
   const double u0 = along_x ? lo.x : lo.y, u1 = along_x ? hi.x : hi.y, v0 = along_x ? lo.y : lo.x, v1 = along_x ? hi.y : hi.x;
   const double vm = (v0 + v1) / 2, half = (v1 - v0) / 2;
   const Vec3 c0 = at(u0, v0, z), c1 = at(u1, v0, z), c2 = at(u1, v1, z), c3 = at(u0, v1, z);
@@ -176,14 +177,14 @@ void roof(MeshObject& mesh, Vec2 lo, Vec2 hi, double z, double rise, bool hipped
   const double r0 = hipped ? u0 + half : u0, r1 = hipped ? u1 - half : u1;
   if (hipped && r1 - r0 < 0.05) {  // a pyramid
     const Vec3 apex = at((u0 + u1) / 2, vm, z + rise);
-    s.tri(c0, c1, apex, dir(0, -1, 1)), s.tri(c1, c2, apex, dir(1, 0, 1)), s.tri(c2, c3, apex, dir(0, 1, 1)), s.tri(c3, c0, apex, dir(-1, 0, 1));
+    s.tri(c0, c1, apex, at(0, -1, 1)), s.tri(c1, c2, apex, at(1, 0, 1)), s.tri(c2, c3, apex, at(0, 1, 1)), s.tri(c3, c0, apex, at(-1, 0, 1));
     return;
   }
   const Vec3 R0 = at(r0, vm, z + rise), R1 = at(r1, vm, z + rise);
-  s.quad(c0, c1, R1, R0, dir(0, -1, 1));
-  s.quad(c3, c2, R1, R0, dir(0, 1, 1));
-  s.tri(c0, R0, c3, dir(-1, 0, hipped ? 1 : 0));
-  s.tri(c1, R1, c2, dir(1, 0, hipped ? 1 : 0));
+  s.quad(c0, c1, R1, R0, at(0, -1, 1));
+  s.quad(c3, c2, R1, R0, at(0, 1, 1));
+  s.tri(c0, R0, c3, at(-1, 0, hipped ? 1 : 0));
+  s.tri(c1, R1, c2, at(1, 0, hipped ? 1 : 0));
 }
 
 // The facade spec for a box, its bays widened (then its windows dropped) until the box fits

@@ -46,12 +46,6 @@ using polar::DiagramKind;
 
 // --- Plan arithmetic of the test's own, exact on half-metre grids of small coordinates --------
 
-std::string format_ids(const std::vector<ObjectId>& ids) {
-  std::string out = "[";
-  for (ObjectId id : ids) out += (out.size() > 1 ? "," : "") + std::to_string(id);
-  return out + "]";
-}
-
 double cross2(Vec2 o, Vec2 a, Vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
 // The diagram's turning side and sense in world terms: East+ turns counter-clockwise from +x
@@ -154,8 +148,7 @@ rc::Gen<PlanCase> plan_case() {
                         c.camera.position = {x + (grid ? (fx % 2) * 0.5 : fx / 1000.0), y + (grid ? (fy % 2) * 0.5 : fy / 1000.0), 1.0};
                         if (kind == 0) {  // on the vertical or horizontal line through a vertex: along a wall
                           const Scene s = generators::slot_city(c.params, c.seed);
-                          std::vector<Vec2> vs;
-                          for (const Building& b : s.buildings) vs.insert(vs.end(), b.footprint.begin(), b.footprint.end());
+                          const std::vector<Vec2> vs = polar::footprint_vertices(s);
                           if (!vs.empty()) {
                             const Vec2 v = vs[static_cast<std::size_t>(fx) % vs.size()];
                             (fy % 2 ? c.camera.position.x : c.camera.position.y) = fy % 2 ? v.x : v.y;
@@ -221,10 +214,10 @@ bool fan_matches_oracle(const PlanCase& c, polar::FanOptions options, FanCounts&
   }
   const polar::VisibilityFan fan(s, options);
   const Vec2 eye = plan(c.camera.position);
-  RC_PRE(eye.x > fan.frame().lo.x && eye.x < fan.frame().hi.x && eye.y > fan.frame().lo.y && eye.y < fan.frame().hi.y);
+  RC_PRE(fan.inside_frame(eye));
   const polar::FanResult got = fan.visible(plan(c.camera.position), polar::plan_wedge(c.camera));
   RC_LOG() << "replay: " << replay(c) << "\n";
-  RC_LOG() << "oracle " << format_ids(truth.visible) << " fan " << format_ids(got.visible) << "\n";
+  RC_LOG() << "oracle " << ids_text(truth.visible) << " fan " << ids_text(got.visible) << "\n";
   if (got.visible != truth.visible) return false;
   ++n.cases;
   n.on_wall_line += eye_on_a_visible_wall_line(s, truth.visible, plan(c.camera.position));
@@ -395,11 +388,11 @@ TEST(PolarDiagramCulling, AgreesWithTheOraclesOnTallCities) {
     ++claimed;
     const std::vector<ObjectId> pvs = method.cull(c).pvs;
     const oracle::Exact2dResult exact = oracle::exact_visible_2d(s, c);
-    RC_LOG() << "exact " << format_ids(exact.visible) << " pvs " << format_ids(pvs) << "\n";
+    RC_LOG() << "exact " << ids_text(exact.visible) << " pvs " << ids_text(pvs) << "\n";
     RC_ASSERT(pvs == exact.visible);
     const oracle::Oracle truth(s);
     const auto seen = truth.visible_set(c, property_oracle()).visible;
-    RC_LOG() << "witnessed " << format_ids(seen) << "\n";
+    RC_LOG() << "witnessed " << ids_text(seen) << "\n";
     RC_ASSERT(std::includes(pvs.begin(), pvs.end(), seen.begin(), seen.end()));
     witnessed += static_cast<int>(seen.size());
     nonempty += !pvs.empty();

@@ -12,16 +12,6 @@
 #include "oracle/exact_2d.hpp"
 
 namespace cullcheck {
-namespace {
-
-std::string ids_text(const std::vector<ObjectId>& ids) {
-  std::string out = "[";
-  for (ObjectId id : ids) out += (out.size() > 1 ? "," : "") + std::to_string(id);
-  return out + "]";
-}
-
-}  // namespace
-
 std::vector<ClaimCheck> check_polar_claims(const ClaimSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   ClaimCheck claim;
@@ -53,8 +43,7 @@ std::vector<ClaimCheck> check_polar_claims(const ClaimSearchOptions& options) {
       cam.yaw = rng.uniform_real(0, kTwoPi);
       cam.hfov = rng.bernoulli(0.25) ? kTwoPi : rng.uniform_real(0.02, 3.1);
       cam.vfov = 0.5, cam.near = 0.001, cam.far = 1e6;
-      const Box2& f = fan.frame();
-      if (!(eye.x > f.lo.x && eye.x < f.hi.x && eye.y > f.lo.y && eye.y < f.hi.y)) continue;
+      if (!fan.inside_frame(eye)) continue;
       oracle::Exact2dResult truth;
       try {
         truth = exact.visible(cam);

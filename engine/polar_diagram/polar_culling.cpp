@@ -40,9 +40,7 @@ PolarDiagramCulling::PolarDiagramCulling(const Scene& scene, polar::FanOptions o
 
 std::string PolarDiagramCulling::unsupported_camera(const Camera& camera) const {
   if (std::string why = CullingMethod::unsupported_camera(camera); !why.empty()) return why;
-  const Box2& f = fan_.frame();
-  const Vec2 eye = plan(camera.position);
-  if (!(eye.x > f.lo.x && eye.x < f.hi.x && eye.y > f.lo.y && eye.y < f.hi.y))
+  if (!fan_.inside_frame(plan(camera.position)))
     return "polar_diagram: the eye lies outside the scene's frame (its bounds grown by a quarter)";
   return "";
 }

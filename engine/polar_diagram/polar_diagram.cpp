@@ -103,6 +103,12 @@ std::int64_t PolarDiagram::first_vertex(Vec2 world) const {
   return best < 0 ? -1 : static_cast<std::int64_t>(original_[static_cast<std::size_t>(best)]);
 }
 
+std::vector<Vec2> footprint_vertices(const Scene& scene) {
+  std::vector<Vec2> out;
+  for (const Building& b : scene.buildings) out.insert(out.end(), b.footprint.begin(), b.footprint.end());
+  return out;
+}
+
 PolarDiagrams::PolarDiagrams(const std::vector<Vec2>& vertices) {
   for (DiagramKind k : {DiagramKind::east_plus, DiagramKind::east_minus, DiagramKind::west_plus, DiagramKind::west_minus})
     diagrams.emplace_back(vertices, k);

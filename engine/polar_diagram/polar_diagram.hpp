@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/scene.hpp"
 
 namespace cullcheck::polar {
 
@@ -52,6 +53,10 @@ class PolarDiagram {
   std::vector<std::uint32_t> chain_begin_, chain_end_;  // per node, into chains_
   std::vector<std::uint32_t> chains_;     // sorted_ indices, each chain from low to high
 };
+
+// Every building's footprint vertices, building by building in the scene's order: the points the
+// diagrams are built on.
+std::vector<Vec2> footprint_vertices(const Scene& scene);
 
 // The four diagrams of one scene's vertices, built once.
 struct PolarDiagrams {

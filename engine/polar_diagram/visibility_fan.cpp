@@ -10,12 +10,6 @@
 namespace cullcheck::polar {
 namespace {
 
-std::vector<Vec2> footprint_vertices(const Scene& scene) {
-  std::vector<Vec2> out;
-  for (const Building& b : scene.buildings) out.insert(out.end(), b.footprint.begin(), b.footprint.end());
-  return out;
-}
-
 constexpr Vec2 kAxes[4] = {{1.0, 0.0}, {0.0, 1.0}, {-1.0, 0.0}, {0.0, -1.0}};  // E, N, W, S
 
 double approx_cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
@@ -52,9 +46,8 @@ int VisibilityFan::Grid::cx(double x) const { return clamped_cell(x, origin.x, c
 int VisibilityFan::Grid::cy(double y) const { return clamped_cell(y, origin.y, cell, ny); }
 
 VisibilityFan::VisibilityFan(const Scene& scene, FanOptions options)
-    : options_(options), diagrams_(footprint_vertices(scene)) {
-  points_ = footprint_vertices(scene);
-  building_vertices_ = points_.size();
+    : options_(options), points_(footprint_vertices(scene)), diagrams_(points_) {
+  building_vertices_ = points_.size();  // the frame's corners follow, outside the diagrams
   Box2 bounds;
   for (std::uint32_t i = 0; i < scene.buildings.size(); ++i) {
     const Building& b = scene.buildings[i];
@@ -344,7 +337,7 @@ void VisibilityFan::sweep(Vec2 eye, const Piece& piece, Scratch& s, FanResult& o
 }
 
 FanResult VisibilityFan::visible(Vec2 eye, const PlanWedge& wedge) const {
-  if (!(eye.x > frame_.lo.x && eye.x < frame_.hi.x && eye.y > frame_.lo.y && eye.y < frame_.hi.y))
+  if (!inside_frame(eye))
     throw std::invalid_argument("polar fan: the eye lies outside the scene's frame");
   Scratch& s = *scratch_;
   if (++s.query == 0) {

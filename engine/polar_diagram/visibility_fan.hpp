@@ -85,6 +85,10 @@ class VisibilityFan {
   const std::vector<Vec2>& vertices() const { return points_; }
   const PolarDiagrams& diagrams() const { return diagrams_; }
   const Box2& frame() const { return frame_; }
+  // Whether `eye` lies strictly inside the frame (queries need it).
+  bool inside_frame(Vec2 eye) const {
+    return eye.x > frame_.lo.x && eye.x < frame_.hi.x && eye.y > frame_.lo.y && eye.y < frame_.hi.y;
+  }
   std::size_t building_vertices() const { return building_vertices_; }
 
  private:

@@ -36,7 +36,7 @@ const City& city(int which) {
     // Both sides use footprints alone; CGAL's refuses buildings not taller than the eye (the
     // default city's kiosks), so all are raised.
     for (Building& b : c->scene.buildings) b.height = std::max(b.height, 100.0);
-    for (const Building& b : c->scene.buildings) c->vertices.insert(c->vertices.end(), b.footprint.begin(), b.footprint.end());
+    c->vertices = polar::footprint_vertices(c->scene);
     generators::StreetWalkParams walk;
     walk.frames = 300;
     const std::vector<Camera> frames =
