@@ -42,6 +42,7 @@ TriangleMesh triangulate(const Scene& scene) {
   // positions, not equal indices, and the same double always rounds to the same float.
   for (std::uint32_t i = 0; i < scene.buildings.size(); ++i) {
     const Building& b = scene.buildings[i];
+    mesh.first_triangle.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
     const std::size_t n = b.footprint.size();
     for (std::size_t k = 0; k < n; ++k) {
       const Vec2 p = b.footprint[k], q = b.footprint[(k + 1) % n];
@@ -63,6 +64,7 @@ TriangleMesh triangulate(const Scene& scene) {
   for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
     const MeshObject& m = scene.meshes[k];
     const auto owner = static_cast<std::uint32_t>(scene.buildings.size() + k);
+    mesh.first_triangle.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
     for (const auto& t : m.triangles) add_triangle(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], owner);
     mesh.mesh_edges.push_back(mesh_edges_of(m));
   }

@@ -41,6 +41,7 @@ struct TriangleMesh {
   std::vector<std::uint32_t> owner_index;  // primID -> object index (buildings, then meshes)
   std::vector<ObjectId> owner_id;          // primID -> the object's id
   std::vector<ObjectId> object_ids;        // object index -> id
+  std::vector<std::uint32_t> first_triangle;  // object index -> its first primID (its triangles are contiguous, in order)
   std::size_t building_count = 0;          // objects [0, building_count) are buildings
   // Per building: its roof triangles as indices into its footprint (roof_triangulation.hpp).
   std::vector<std::vector<std::array<std::uint32_t, 3>>> roofs;

@@ -35,7 +35,8 @@ const TriangleMesh& RayOracle::mesh() const { return impl_->embree.mesh(); }
 const Scene& RayOracle::scene() const { return impl_->scene; }
 const EmbreeScene& RayOracle::embree() const { return impl_->embree; }
 
-OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& options, RayLog* log) const {
+OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& options, RayLog* log,
+                                TriangleWitnesses* triangles) const {
   const auto start = Clock::now();
   validate(camera);
   validate(options);
@@ -73,13 +74,16 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
     for (std::size_t k = 0; k < chunk.size(); ++k) {
       if (!hits[k].hit()) continue;
       const std::uint32_t owner = mesh.owner_index[hits[k].triangle];
-      if (witness_rays[owner] > kFurtherWitnesses) continue;  // the first and its further ones found
+      // The first and its further ones found (and no triangle asked for).
+      if (witness_rays[owner] > kFurtherWitnesses && !triangles) continue;
       const PlannedRay& r = chunk[k];
       const double t = im.embree.exact_t(r.origin, r.direction, hits[k]);
       const Vec3 hit_point = r.origin + r.direction * t;
       if (!volume.contains(hit_point)) continue;
       const WitnessRay w{r.origin,         r.direction, r.t_near, r.t_far, t, hit_point, r.target, hits[k].triangle,
                          r.aimed_at == kNoObjectIndex ? ObjectId(0) : mesh.object_ids[r.aimed_at], r.source};
+      if (triangles) triangles->emplace(hits[k].triangle, w);
+      if (witness_rays[owner] > kFurtherWitnesses) continue;
       const ObjectId id = mesh.object_ids[owner];
       if (witness_rays[owner]++ == 0)
         result.witnesses.emplace(id, w);

@@ -79,6 +79,10 @@ struct OracleResult {
   double rays_per_second() const { return elapsed_seconds > 0 ? double(rays_cast) / elapsed_seconds : 0.0; }
 };
 
+// Per triangle (primID in the oracle's mesh): the first ray whose first hit lies on it inside the
+// view volume. Asked for by properties that hold a method to finer than objects (slice-wise).
+using TriangleWitnesses = std::map<std::uint32_t, WitnessRay>;
+
 // The rays of one query, exactly as handed to Embree, for replaying them bare.
 struct RayLog {
   struct Ray {
@@ -99,8 +103,10 @@ class RayOracle {
   RayOracle& operator=(const RayOracle&) = delete;
 
   // Throws InputError if the camera or options are unusable. If `log` is given, every ray cast
-  // is appended to it.
-  OracleResult witness(const Camera& camera, const SamplingOptions& options = {}, RayLog* log = nullptr) const;
+  // is appended to it; if `triangles` is, every witnessed triangle is added to it (a triangle
+  // already there keeps its ray).
+  OracleResult witness(const Camera& camera, const SamplingOptions& options = {}, RayLog* log = nullptr,
+                       TriangleWitnesses* triangles = nullptr) const;
 
   // The object hit first by `ray` (re-cast through Embree), if any, and whether that hit lies
   // in the view volume of `camera`. Used to check witnesses and to replay a failure.

@@ -8,7 +8,10 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/slice_wise/slice_rectangle.hpp"
+#include "engine/slice_wise/slice_scene.hpp"
 #include "engine/slice_wise/slicing.hpp"
+#include "engine/slice_wise/voxel_erosion.hpp"
 #include "generators/detailed_buildings.hpp"
 
 namespace cullcheck::slice_wise {
@@ -86,6 +89,108 @@ TEST(Slicing, RenderingSetsOfAllVisibleAndOfAnLShape) {
     EXPECT_EQ(std::binary_search(drawn.begin(), drawn.end(), t), want) << "triangle " << t;
   }
   EXPECT_EQ(drawn.size(), expected);
+}
+
+// One object's SliceWiseObject (slices, per-triangle ranges) through the scene preparation.
+SliceWiseObject prepared_object(const MeshObject& m) {
+  Scene scene;
+  scene.meshes.push_back(m);
+  const SliceWiseScene prepared(scene, {});
+  return prepared.objects()[0];
+}
+
+TEST(Algorithm3, DropsExactlyTheTrianglesItsIndicesDrop) {
+  const MeshObject m = tower();
+  const SliceWiseObject o = prepared_object(m);
+  const std::size_t nx = o.slices.axes[0].count(), ny = o.slices.axes[1].count(), nz = o.slices.axes[2].count();
+  ASSERT_EQ(nx, 7u);
+  ASSERT_EQ(ny, 5u);
+  ASSERT_EQ(nz, 15u);
+  SliceOcclusion occ;
+  occ.hidden_height[0] = {20, 20, 20, 0, 0, 0, 0};  // the three lowest-x slices hidden to 20 m: an L from the low side
+  occ.hidden_height[1].assign(ny, 0.0);
+  occ.z_hidden.assign(nz, 0);
+  const SliceChoice c = choose_slices(o, occ);
+  EXPECT_EQ(c.indices.work_axis, 0);
+  EXPECT_EQ(c.indices.x, -3) << "slices 3.. stay";
+  EXPECT_EQ(c.indices.z, 6) << "slabs of 3 m: six lie below 20 m";
+  EXPECT_EQ(c.form, VisibleForm::l_shaped);
+  EXPECT_TRUE(c.any_hidden_cell);
+  EXPECT_EQ(c.dropped, m.triangles.size() - rendering_set(o.slices, c.indices).size());
+  EXPECT_GT(c.dropped, 0u);
+  EXPECT_EQ(c.cell_dropped, c.dropped) << "the hidden cells are one rectangle";
+  // The high side of y hidden whole: a vertical form on y drops more.
+  occ.hidden_height[1] = {0, 0, 0, 45, 45};
+  const SliceChoice v = choose_slices(o, occ);
+  EXPECT_EQ(v.indices.work_axis, 1);
+  EXPECT_EQ(v.indices.y, 2) << "slices 0..2 stay";
+  EXPECT_EQ(v.indices.z, 15);
+  EXPECT_EQ(v.form, VisibleForm::vertical);
+  EXPECT_EQ(v.dropped, m.triangles.size() - rendering_set(o.slices, v.indices).size());
+  EXPECT_EQ(v.cell_dropped, v.dropped) << "on y the hidden cells are one rectangle too (the L on x is given up)";
+  // Nothing hidden: nothing dropped, everything kept.
+  occ.hidden_height[0].assign(nx, 0.0), occ.hidden_height[1].assign(ny, 0.0);
+  const SliceChoice none = choose_slices(o, occ);
+  EXPECT_EQ(none.dropped, 0u);
+  EXPECT_EQ(rendering_set(o.slices, none.indices).size(), m.triangles.size());
+}
+
+TEST(Algorithm3, TheBestFormKeepsEveryTriangleItMust) {
+  const MeshObject m = tower();
+  const SliceWiseObject o = prepared_object(m);
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    std::vector<char> keep(m.triangles.size(), 0);
+    // Keep the triangles of a seeded corner of the tower (an L-shaped visible part and more).
+    const double cx = 2.0 + seed % 7 * 2.5, cz = 3.0 + seed % 5 * 8.0;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const Vec3 a = m.vertices[m.triangles[t][0]];
+      keep[t] = (a.x > cx || a.z > cz) && (t * 2654435761u + seed) % 3 == 0;
+    }
+    const SliceChoice c = best_form_keeping(o, keep);
+    const std::vector<std::uint32_t> drawn = rendering_set(o.slices, c.indices);
+    for (std::size_t t = 0; t < keep.size(); ++t)
+      if (keep[t]) ASSERT_TRUE(std::binary_search(drawn.begin(), drawn.end(), std::uint32_t(t))) << "seed " << seed << " triangle " << t;
+    EXPECT_EQ(c.dropped, m.triangles.size() - drawn.size());
+    EXPECT_GT(c.dropped, 0u) << "seed " << seed;
+  }
+}
+
+TEST(VoxelErosion, APlainBlockShrinksByTheCubeOfVoxelsAndKeepsItsFoot) {
+  Building b;
+  b.id = 3;
+  b.footprint = {{0, 0}, {20, 0}, {20, 14}, {0, 14}};
+  b.height = 45;
+  finish_building(b);
+  const MeshObject m = building_as_mesh(b);
+  ASSERT_TRUE(m.closed);
+  const VoxelErosion e = erode_closed_mesh(m, 1.4142135623730951, 0.5);
+  ASSERT_EQ(e.boxes.size(), 1u);
+  // The wall voxels touch the walls; three more (1.5 m >= ε) eroded; the floor stays on the ground.
+  EXPECT_EQ(e.boxes[0].lo, (Vec3{2, 2, 0}));
+  EXPECT_EQ(e.boxes[0].hi, (Vec3{18, 12, 43}));
+  EXPECT_EQ(e.ambiguous_columns, 0u);
+  EXPECT_EQ(e.kept, 32u * 20u * 86u);
+}
+
+TEST(VoxelErosion, ADetailedBuildingsBoxesLieInsideItsBoxShrunkByEpsilon) {
+  const MeshObject m = tower();
+  ASSERT_TRUE(m.closed);
+  const double eps = 1.4142135623730951;
+  const VoxelErosion e = erode_closed_mesh(m, eps, 0.5);
+  ASSERT_FALSE(e.boxes.empty());
+  double volume = 0;
+  for (const Box3& b : e.boxes) {
+    EXPECT_GE(b.lo.x, m.bounds.lo.x + eps);
+    EXPECT_LE(b.hi.x, m.bounds.hi.x - eps);
+    EXPECT_GE(b.lo.y, m.bounds.lo.y + eps);
+    EXPECT_LE(b.hi.y, m.bounds.hi.y - eps);
+    EXPECT_GE(b.lo.z, m.bounds.lo.z);
+    EXPECT_LE(b.hi.z, m.bounds.hi.z - eps);
+    volume += (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y) * (b.hi.z - b.lo.z);
+  }
+  EXPECT_GT(volume, 1000.0) << "the tower's core survives its window recesses";
+  EXPECT_EQ(boxes_mesh(e.boxes).triangles.size(), 12 * e.boxes.size());
+  EXPECT_THROW(erode_closed_mesh(m, eps, 0.5, 1000), std::invalid_argument);
 }
 
 TEST(Slicing, RefusesMoreSlicesThanAByteHolds) {

@@ -7,6 +7,7 @@
 #include "reports/radar_table.hpp"
 #include "reports/report.hpp"
 #include "reports/shard_merge.hpp"
+#include "reports/slice_wise_table.hpp"
 #include "reports/subject_claims.hpp"
 #include "reports/vbaoi.hpp"
 #include "reports/view_cells.hpp"
@@ -17,7 +18,7 @@ namespace cullcheck {
 using nlohmann::json;
 
 const std::vector<std::string>& report_section_names() {
-  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "radar_echo", "polar_diagram", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
+  static const std::vector<std::string> names = {"region_sweep", "table_4_1", "online_culling", "radar_echo", "polar_diagram", "slice_wise", "vbaoi", "scaling", "fuzz", "soak", "benchmarks"};
   return names;
 }
 
@@ -32,6 +33,7 @@ std::uint64_t section_gate_violations(const json& document) {
   if (document.contains("vbaoi")) n += vbaoi_gate_violations(document["vbaoi"]);
   if (document.contains("radar_echo")) n += radar_table_violations(document["radar_echo"]);
   if (document.contains("polar_diagram")) n += polar_table_mismatches(document["polar_diagram"]);
+  if (document.contains("slice_wise")) n += slice_table_violations(document["slice_wise"]);
   return n;
 }
 

@@ -33,6 +33,7 @@
 #include "reports/radar_claims.hpp"
 #include "reports/polar_claims.hpp"
 #include "reports/polar_table.hpp"
+#include "reports/slice_wise_table.hpp"
 #include "reports/radar_table.hpp"
 #include "reports/table_4_1.hpp"
 #include "reports/vbaoi.hpp"
@@ -53,6 +54,8 @@ Runner add_report(CLI::App& app) {
     RadarTableOptions radar_table_options;
     bool polar_table = false;
     PolarTableOptions polar_table_options;
+    bool slice_table = false;
+    SliceTableOptions slice_table_options;
     RegionFlags regions;
     std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
     std::optional<std::size_t> map_frame;
@@ -166,6 +169,24 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--polar-frames", f->polar_table_options.frames, "Walk frames per city and view of --polar-table")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  sub->add_flag("--slice-table", f->slice_table,
+                "Also measure slice-wise PVSs (Yilmaz & Gudukbay) as the paper's Tables 1-3 and Fig. 7 on the detailed default city "
+                "(and --slice-cityjson): slicing, shrinking, Algorithms 1-3 per view cell of a street walk, triangles per frame "
+                "against building-level culling, PVS storage, the premise of Fig. 2, and the oracle's per-triangle check from "
+                "cell corners (a violation fails the gate); into report.json's \"slice_wise\"");
+  sub->add_option("--slice-frames", f->slice_table_options.frames, "Walk frames per city of --slice-table")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  sub->add_option("--slice-cell", f->slice_table_options.cell_side, "View-cell side of --slice-table, metres")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1000.0));
+  sub->add_option("--slice-oracle-cells", f->slice_table_options.oracle_cells,
+                  "Cells of --slice-table checked by the oracle from their corners, edge midpoints and centre")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  sub->add_option("--slice-cityjson", f->slice_table_options.cityjson,
+                  "A LoD2 CityJSON file measured by --slice-table too (each Building and BuildingPart a mesh)")
+      ->check(CLI::ExistingFile);
   sub->add_flag("--radar-table", f->radar_table,
                 "Also measure radar echo over terrain as thesis ch. 3.3 did: Table 3.3 on a generated terrain of the thesis's size "
                 "(--radar-grids, 60 and 360 degrees, both rules, the oracle's witnessed count), the same on --radar-dem, growth with "
@@ -256,7 +277,7 @@ Runner add_report(CLI::App& app) {
     std::vector<std::string> asked;
     const std::map<std::string, bool> wanted = {
         {"region_sweep", !f->region_sweep_radii.empty()}, {"table_4_1", f->table_41}, {"online_culling", f->online_table},
-        {"radar_echo", f->radar_table}, {"polar_diagram", f->polar_table},
+        {"radar_echo", f->radar_table}, {"polar_diagram", f->polar_table}, {"slice_wise", f->slice_table},
         {"vbaoi", vbaoi_scene.has_value()},                {"scaling", !f->scaling_grids.empty()}, {"fuzz", !f->fuzz.subject.empty()},
         {"soak", f->soak.budget > 0},                      {"benchmarks", !f->benchmark_json.empty()}};
     for (const std::string& name : report_section_names())
@@ -321,6 +342,11 @@ Runner add_report(CLI::App& app) {
     if (mine("polar_diagram")) {
       parts.sections["polar_diagram"] = polar_diagram_table(f->polar_table_options);
       std::cout << polar_diagram_table_text(parts.sections["polar_diagram"]);
+    }
+    if (mine("slice_wise")) {
+      parts.sections["slice_wise"] = slice_wise_table(f->slice_table_options);
+      parts.section_claims["slice_wise"] = slice_wise_claims(parts.sections["slice_wise"]);
+      std::cout << slice_wise_table_text(parts.sections["slice_wise"]);
     }
     if (f->view_cells) {  // every shard: its share of the cells
       f->view_cell_options.methods = options.region_methods.empty() ? region_method_names() : options.region_methods;

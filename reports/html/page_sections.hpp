@@ -29,6 +29,7 @@ std::string table_4_1_section(const nlohmann::json& report);
 std::string online_culling_section(const nlohmann::json& report);
 std::string radar_echo_section(const nlohmann::json& report);
 std::string polar_diagram_section(const nlohmann::json& report);
+std::string slice_wise_section(const nlohmann::json& report);
 std::string regions_section(const nlohmann::json& report);
 std::string vbaoi_table_section(const nlohmann::json& report);
 std::string fuzz_section(const nlohmann::json& report);

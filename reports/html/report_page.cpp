@@ -112,7 +112,7 @@ std::string report_page(const nlohmann::json& report, const PageMap& map) {
     page += ", path " + escape(text_of(report["path"], "kind")) + " of " + count(value_of(report["path"], "frames")) + " frames";
   page += ". Schema version " + escape(count(value_of(report, "schema_version"))) + ".</p>\n";
   page += "<nav><a href=\"#gate\">Gate</a><a href=\"#summary\">Methods</a><a href=\"#claims\">Claims</a><a href=\"#pareto\">Speed "
-          "and accuracy</a><a href=\"#per-frame\">Per frame</a><a href=\"#tables\">Thesis tables</a><a href=\"#online-culling\">On-line culling</a><a href=\"#radar-echo\">Radar</a><a href=\"#polar-diagram\">Polar diagrams</a><a href=\"#regions\">Regions</a>"
+          "and accuracy</a><a href=\"#per-frame\">Per frame</a><a href=\"#tables\">Thesis tables</a><a href=\"#online-culling\">On-line culling</a><a href=\"#radar-echo\">Radar</a><a href=\"#polar-diagram\">Polar diagrams</a><a href=\"#slice-wise\">Slice-wise</a><a href=\"#regions\">Regions</a>"
           "<a href=\"#vbaoi\">VbAoI</a><a href=\"#map\">Map</a><a href=\"#scene\">Scene</a></nav>\n";
   page += guarded("Gate", [&] { return gate_section(report); });
   page += guarded("Methods", [&] { return summary_section(report); });
@@ -125,6 +125,7 @@ std::string report_page(const nlohmann::json& report, const PageMap& map) {
   page += guarded("On-line image-space culling", [&] { return online_culling_section(report); });
   page += guarded("Radar echo", [&] { return radar_echo_section(report); });
   page += guarded("Polar diagrams", [&] { return polar_diagram_section(report); });
+  page += guarded("Slice-wise PVS", [&] { return slice_wise_section(report); });
   page += guarded("Region methods", [&] { return regions_section(report); });
   page += guarded("Region radius sweep", [&] { return region_sweep_section(report); });
   page += guarded("VbAoI", [&] { return vbaoi_table_section(report) + vbaoi_plot_section(report); });

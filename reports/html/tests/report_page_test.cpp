@@ -140,6 +140,29 @@ TEST(ReportPage, ShowsThePolarDiagramTableWhenTheReportHasIt) {
   EXPECT_NE(page.find("class=\"bad\""), std::string::npos) << "a mismatch shows as a violation";
 }
 
+// cullcheck report --slice-table's section: one row per city and occluder run, violations marked.
+TEST(ReportPage, ShowsTheSliceWiseTableWhenTheReportHasIt) {
+  json report = small_report(true);
+  EXPECT_EQ(report_page(report, {}).find("id=\"slice-wise\""), std::string::npos);
+  report["slice_wise"] = {
+      {"cell_side_m", 2.0},
+      {"replay", "cullcheck report --slice-table"},
+      {"cities", json::array({{{"city", "detailed"},
+                               {"table_1", {{"objects", 384}, {"triangles", 922320}}},
+                               {"runs", json::array({{{"shrinking", "voxel_erosion"}, {"self_occlusion", true},
+                                                      {"table_2", {{"cells", 14}, {"pvs_ms_per_cell_median", 237.3}, {"pvs_objects_median", 85}}},
+                                                      {"table_3", {{"slice_wise_triangles_mean", 30905}, {"building_level_triangles_mean", 43739},
+                                                                   {"slice_over_building", 0.707}}},
+                                                      {"bound", {{"best_form_over_whole", 0.312}, {"witnessed_over_whole", 0.156}}},
+                                                      {"oracle", {{"violations", 2}}}}})}}})}};
+  const std::string page = report_page(report, {});
+  EXPECT_NE(page.find("<tr><td class=\"name\">detailed</td><td class=\"name\">voxel_erosion + self</td><td>384</td><td>922,320</td>"),
+            std::string::npos)
+      << page.substr(std::min(page.size(), page.find("slice-wise")), 1500);
+  EXPECT_NE(page.find("<td>70.7%</td>"), std::string::npos);
+  EXPECT_NE(page.find("class=\"bad\""), std::string::npos) << "a violation shows";
+}
+
 TEST(ReportPage, CarriesTheMapInlineOrSaysWhyNot) {
   json report = small_report(true);
   report["map"] = {{"method", "oh_os_conservative"}, {"frame", 2}, {"chosen_by", "test"}, {"pvs", {1, 2}}, {"seen", {1}},

@@ -1,0 +1,209 @@
+#include "engine/slice_wise/cell_culling.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+#include <stdexcept>
+
+namespace cullcheck::slice_wise {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+double distance_to(Vec3 p, const Box3& b) {
+  const double dx = std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x});
+  const double dy = std::max({b.lo.y - p.y, 0.0, p.y - b.hi.y});
+  const double dz = std::max({b.lo.z - p.z, 0.0, p.z - b.hi.z});
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+bool empty(const Box3& b) { return !(b.lo.x <= b.hi.x); }
+
+// Front to back over the tree: on_node(node) says whether to open a node (or, at a leaf, to visit
+// its objects); on_object(object) is called for its objects, nearest first.
+template <class OnNode, class OnObject>
+void front_to_back(const ObjectTree& tree, const std::vector<SliceWiseObject>& objects, Vec3 eye, OnNode&& on_node,
+                   OnObject&& on_object) {
+  using Item = std::pair<double, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  queue.emplace(distance_to(eye, tree.nodes[0].box), 0u);
+  std::vector<Item> leaf;
+  while (!queue.empty()) {
+    const std::uint32_t n = queue.top().second;
+    queue.pop();
+    const ObjectTree::Node& node = tree.nodes[n];
+    if (node.last == node.first || !on_node(node)) continue;
+    if (node.child_count > 0) {
+      for (std::uint32_t c = 0; c < node.child_count; ++c)
+        queue.emplace(distance_to(eye, tree.nodes[node.first_child + c].box), node.first_child + c);
+      continue;
+    }
+    leaf.clear();
+    for (std::uint32_t k = node.first; k < node.last; ++k)
+      leaf.emplace_back(distance_to(eye, objects[tree.order[k]].box), tree.order[k]);
+    std::sort(leaf.begin(), leaf.end());
+    for (const auto& [d, o] : leaf) on_object(o);
+  }
+}
+
+}  // namespace
+
+void validate(const CellCullingOptions& o) {
+  if (!(o.delta > 0) || !std::isfinite(o.delta)) throw std::invalid_argument("slice-wise: delta must be positive and finite");
+  if (o.cube_resolution < 8 || o.cube_resolution > 4096)
+    throw std::invalid_argument("slice-wise: cube_resolution must lie in [8, 4096]");
+  if (o.zoom_resolution < 8 || o.zoom_resolution > 4096)
+    throw std::invalid_argument("slice-wise: zoom_resolution must lie in [8, 4096]");
+  if (!(o.near > 0) || !(o.near < 1)) throw std::invalid_argument("slice-wise: near must lie in (0, 1) metres");
+}
+
+CellCuller::CellCuller(const SliceWiseScene& scene, const CellCullingOptions& options) : scene_(scene), options_(options) {
+  validate(options);
+}
+
+bool CellCuller::cube_hidden(const Box3& box) {
+  // Points within `near` of the eye on every axis lie in no face's image: such a box stays.
+  const double r = options_.near * 1.001;
+  if (box.lo.x <= eye_.x + r && box.hi.x >= eye_.x - r && box.lo.y <= eye_.y + r && box.hi.y >= eye_.y - r &&
+      box.lo.z <= eye_.z + r && box.hi.z >= eye_.z - r)
+    return false;
+  for (OcclusionBuffer& face : cube_)
+    if (face.test_box(box).visible) return false;
+  return true;
+}
+
+void CellCuller::draw_cube(const TriangleMesh& occluder, const Box3& box) {
+  for (OcclusionBuffer& face : cube_) {
+    if (!face.locate_box(box).in_image) continue;
+    for (const auto& t : occluder.triangles)
+      face.draw_triangle(occluder.vertices[t[0]], occluder.vertices[t[1]], occluder.vertices[t[2]]);
+  }
+}
+
+void CellCuller::draw_zoomed(std::uint32_t candidate, double farthest, CellStatistics& stats) {
+  const auto& objects = scene_.objects();
+  // Whether something in `box` may stand in front of part of the candidate in this view.
+  auto may_occlude = [&](const Box3& box) {
+    if (empty(box)) return false;
+    const BoxVisibility where = zoom_.locate_box(box);
+    if (!where.in_image || where.nearest >= farthest) return false;
+    return zoom_.test_box(box).visible;
+  };
+  front_to_back(
+      scene_.tree(), objects, eye_, [&](const ObjectTree::Node& node) { return may_occlude(node.box); },
+      [&](std::uint32_t o) {
+        if (o == candidate && !options_.self_occlusion) return;
+        const SliceWiseObject& obj = objects[o];
+        if (!may_occlude(obj.occluder_box)) return;
+        ++stats.occluders_drawn;
+        stats.triangles_drawn += obj.occluder.triangles.size();
+        for (const auto& t : obj.occluder.triangles)
+          zoom_.draw_triangle(obj.occluder.vertices[t[0]], obj.occluder.vertices[t[1]], obj.occluder.vertices[t[2]]);
+      });
+}
+
+bool CellCuller::zoom_hidden(const Box3& box, CellStatistics& stats) {
+  ++stats.queries;
+  const BoxVisibility r = zoom_.test_box(box);
+  return !r.visible && !r.crosses_near && !r.beyond_image;
+}
+
+CellPvs CellCuller::cull(Vec3 centre) {
+  CellPvs out;
+  CellStatistics& stats = out.stats;
+  eye_ = centre;
+  const auto& objects = scene_.objects();
+  const auto views = cube_views(centre, options_.cube_resolution, options_.near);
+  for (std::size_t k = 0; k < 6; ++k) cube_[k].reset(views[k]);
+
+  // Algorithm 1, coarse: blocks and boxes against the cube map, drawing what stays.
+  auto start = Clock::now();
+  std::vector<std::uint32_t> candidates;
+  front_to_back(
+      scene_.tree(), objects, eye_,
+      [&](const ObjectTree::Node& node) {
+        if (!cube_hidden(node.box)) return true;
+        ++stats.coarse_blocks_hidden;
+        return false;
+      },
+      [&](std::uint32_t o) {
+        const SliceWiseObject& obj = objects[o];
+        if (cube_hidden(obj.box)) return;
+        candidates.push_back(o);
+        if (empty(obj.occluder_box)) return;
+        ++stats.occluders_drawn;
+        stats.triangles_drawn += obj.occluder.triangles.size();
+        draw_cube(obj.occluder, obj.occluder_box);
+      });
+  std::sort(candidates.begin(), candidates.end());
+  stats.coarse_candidates = candidates.size();
+  stats.coarse_ms = ms_since(start);
+
+  // Each candidate zoomed: its box, then Algorithm 2 on its slices, then Algorithm 3.
+  start = Clock::now();
+  for (std::uint32_t c : candidates) {
+    const SliceWiseObject& obj = objects[c];
+    ObjectVisibility v;
+    v.object = c;
+    v.indices = all_visible(obj.slices);
+    const auto view = zoomed_view(centre, obj.box, options_.zoom_resolution, options_.near);
+    if (!view) {
+      v.zoom_refused = true;
+    } else {
+      zoom_.reset(*view);
+      const double farthest = zoom_.locate_box(obj.box).farthest;
+      draw_zoomed(c, farthest, stats);
+      if (zoom_hidden(obj.box, stats)) continue;
+      if (options_.slices) {
+        SliceOcclusion occ;
+        const double height = obj.box.hi.z - obj.box.lo.z;
+        const int steps = height > 0 ? static_cast<int>(std::ceil(height / options_.delta)) : 0;
+        for (std::size_t a = 0; a < 2; ++a) {
+          const AxisSlices& s = obj.slices.axes[a];
+          for (std::size_t i = 0; i < s.count(); ++i) {
+            Box3 slab = obj.box;
+            const double lo = s.origin + s.slab[i] * s.thickness, hi = s.origin + (s.slab[i] + 1.0) * s.thickness;
+            (a == 0 ? slab.lo.x : slab.lo.y) = std::max(lo, a == 0 ? obj.box.lo.x : obj.box.lo.y);
+            (a == 0 ? slab.hi.x : slab.hi.y) = std::min(hi, a == 0 ? obj.box.hi.x : obj.box.hi.y);
+            auto hidden_to = [&](int k) {
+              Box3 b = slab;
+              b.hi.z = k >= steps ? obj.box.hi.z : obj.box.lo.z + k * options_.delta;
+              return zoom_hidden(b, stats);
+            };
+            int lo_k = 0, hi_k = steps;  // largest k whose box is hidden (0: none)
+            while (lo_k < hi_k) {
+              const int mid = (lo_k + hi_k + 1) / 2;
+              if (hidden_to(mid)) lo_k = mid;
+              else hi_k = mid - 1;
+            }
+            occ.hidden_height[a].push_back(lo_k >= steps ? height : lo_k * options_.delta);
+          }
+        }
+        const AxisSlices& zs = obj.slices.axes[2];
+        for (std::size_t j = 0; j < zs.count(); ++j) {
+          Box3 slab = obj.box;
+          slab.lo.z = std::max(obj.box.lo.z, zs.origin + zs.slab[j] * zs.thickness);
+          slab.hi.z = std::min(obj.box.hi.z, zs.origin + (zs.slab[j] + 1.0) * zs.thickness);
+          occ.z_hidden.push_back(zoom_hidden(slab, stats) ? 1 : 0);
+        }
+        v.choice = choose_slices(obj, occ);
+        v.indices = v.choice.indices;
+      }
+    }
+    v.choice.cell_dropped = std::max(v.choice.cell_dropped, v.choice.dropped);
+    ++stats.visible;
+    stats.partially_visible += v.choice.any_hidden_cell;
+    stats.reduced += v.choice.dropped > 0;
+    stats.triangles_object_level += obj.triangles();
+    stats.triangles_slice_level += obj.triangles() - v.choice.dropped;
+    stats.triangles_cell_level += obj.triangles() - v.choice.cell_dropped;
+    out.visible.push_back(v);
+  }
+  stats.fine_ms = ms_since(start);
+  return out;
+}
+
+}  // namespace cullcheck::slice_wise

@@ -1,0 +1,98 @@
+// From-region slice-wise culling of one view cell (Yılmaz & Güdükbay §4.2, Algorithms 1 and 2;
+// Algorithm 3 is slice_rectangle.hpp).
+//
+// The cell is a square of side s at a fixed eye height (ground navigation, as the paper's walks);
+// every eye in it lies within ε = s / √2 of the centre, and the occluders are shrunk by ε
+// (slice_scene.hpp), so visibility computed from the centre against the shrunk occluders holds
+// for every eye of the cell (Theorem 1). The queries are occlusion_buffer.hpp's exact-coverage
+// tests, so "hidden" means hidden from the centre for every ray, not for sampled ones.
+//
+// Algorithm 1, coarse: a cube map at the centre (the paper's four 90-degree sections, plus up and
+// down so that no direction is left out); the quadtree's blocks front to back, a block whose box
+// is hidden in every face skipped whole; each object of a visible block tested by its box, and if
+// visible, its shrunk occluder drawn (so later, farther blocks meet the occluders in front of
+// them: occluders that are themselves hidden are never drawn, which changes nothing).
+// Then each candidate on its own: a view zoomed on its box (the paper's zoomed query), every
+// other object's shrunk occluder in that view drawn front to back (again skipping hidden ones and
+// those wholly behind the candidate), the box tested, and if visible, Algorithm 2: each vertical
+// slice's hidden height (boxes of height Δ, 2Δ, ... from the bottom; found by bisection, since a
+// taller box is hidden only if a lower one is) and each horizontal slice tested whole.
+//
+// Deviation, stated: the paper's loop tests heights k Δ while k Δ <= the slice's height, so a slice
+// whose height is not a multiple of Δ is never hidden whole; here the last height is the slice's
+// own, so a slice hidden to its top is invisible.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "engine/slice_wise/occlusion_buffer.hpp"
+#include "engine/slice_wise/slice_rectangle.hpp"
+#include "engine/slice_wise/slice_scene.hpp"
+
+namespace cullcheck::slice_wise {
+
+struct CellCullingOptions {
+  double delta = 1.0;         // Δ, metres: the step of the vertical slices' hidden heights
+  int cube_resolution = 256;  // pixels per cube face side (coarse culling)
+  int zoom_resolution = 128;  // pixels per side of the zoomed view on one candidate
+  double near = 0.05;         // metres
+  bool slices = true;         // false: building-level culling (stop after the candidate's box test)
+  // Whether a candidate's own shrunk occluder is drawn when its slices are tested. The paper tests
+  // an object "against the shrunk versions of all other objects"; an object's own shrunk solid
+  // hides its far side just as validly (Theorem 1 holds for any occluder that does not contain
+  // the target point, and a surface point is never inside its own shrunk solid).
+  bool self_occlusion = false;
+};
+
+struct ObjectVisibility {
+  std::uint32_t object = 0;   // index into SliceWiseScene::objects()
+  VisibilityIndices indices;  // what the cell stores (3 bytes, Fig. 5)
+  SliceChoice choice;
+  bool zoom_refused = false;  // too close or too wide to zoom on: kept whole
+};
+
+struct CellStatistics {
+  std::size_t coarse_blocks_hidden = 0;
+  std::size_t coarse_candidates = 0;    // objects whose box the cube map did not hide
+  std::size_t visible = 0;              // after the zoomed box test
+  std::size_t partially_visible = 0;    // Algorithm 2 found some part hidden
+  std::size_t reduced = 0;              // Algorithm 3 dropped some triangles
+  std::size_t queries = 0;              // box tests of slices and heights
+  std::size_t occluders_drawn = 0;      // occluder meshes drawn, cube and zoomed views together
+  std::size_t triangles_drawn = 0;
+  std::size_t triangles_object_level = 0;  // every visible object whole
+  std::size_t triangles_slice_level = 0;   // the visible objects' rendering sets
+  std::size_t triangles_cell_level = 0;    // what per-cell slice visibility would keep
+  double coarse_ms = 0.0, fine_ms = 0.0;
+};
+
+struct CellPvs {
+  std::vector<ObjectVisibility> visible;  // ascending object index
+  CellStatistics stats;
+};
+
+// Throws std::invalid_argument on a bad option.
+void validate(const CellCullingOptions& o);
+
+// Reusable buffers: one per thread.
+class CellCuller {
+ public:
+  CellCuller(const SliceWiseScene& scene, const CellCullingOptions& options);
+  // The PVS of the cell whose centre (at eye height) is `centre`.
+  CellPvs cull(Vec3 centre);
+
+ private:
+  bool cube_hidden(const Box3& box);
+  void draw_cube(const TriangleMesh& occluder, const Box3& box);
+  void draw_zoomed(std::uint32_t candidate, double farthest, CellStatistics& stats);
+  bool zoom_hidden(const Box3& box, CellStatistics& stats);
+
+  const SliceWiseScene& scene_;
+  CellCullingOptions options_;
+  Vec3 eye_;
+  std::array<OcclusionBuffer, 6> cube_;
+  OcclusionBuffer zoom_;
+};
+
+}  // namespace cullcheck::slice_wise

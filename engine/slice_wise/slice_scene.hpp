@@ -1,0 +1,93 @@
+// What the slice-wise culling prepares once per scene and view-cell size (Yılmaz & Güdükbay
+// Fig. 8, the preprocessing boxes): each object sliced (slicing.hpp), each object's shrunk
+// occluder, and a quadtree over the objects' ground boxes for the coarse culling.
+//
+// Two ways to shrink (both conservative: the occluder lies inside the object eroded by ε):
+//  - minkowski_mesh, as published (engine/shrinking/minkowski_mesh.hpp): vertices moved by
+//    δ = ε / sin(α/2), colliding faces dropped;
+//  - voxel_erosion, the corrected variant (voxel_erosion.hpp): the closed solid eroded on a voxel
+//    grid and kept as boxes, because the published rule drops nearly every face of a facade whose
+//    relief is shallower than ε. An object whose mesh is not closed falls back to minkowski_mesh.
+//
+// Objects are the scene's mesh objects followed by its buildings; a building (a 2.5D prism) is
+// sliced and shrunk as its closed mesh (minkowski_mesh.hpp's building_mesh), so every object has
+// slices, although only mesh objects have triangles the oracle names one by one.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "engine/shrinking/minkowski_mesh.hpp"
+#include "engine/slice_wise/slicing.hpp"
+
+namespace cullcheck::slice_wise {
+
+enum class Shrinking { minkowski_mesh, voxel_erosion };
+std::string_view shrinking_name(Shrinking s);
+Shrinking parse_shrinking(std::string_view name);  // std::invalid_argument naming the accepted values
+
+struct SliceWiseObject {
+  ObjectId id = 0;
+  bool is_mesh = true;          // Scene::meshes[scene_index], else Scene::buildings[scene_index]
+  std::size_t scene_index = 0;
+  Box3 box;                     // of its triangles
+  SlicedObject slices;
+  // Per triangle, its slice index ranges: x first/last, y first/last, z first/last.
+  std::vector<std::array<std::uint8_t, 6>> ranges;
+  TriangleMesh occluder;        // shrunk by ε; may be empty (every face dropped)
+  Box3 occluder_box;            // of the occluder's kept triangles
+  MeshShrinkStatistics shrink;  // minkowski_mesh
+  Shrinking shrunk_by = Shrinking::minkowski_mesh;
+  std::size_t occluder_boxes = 0;  // voxel_erosion
+  double shrink_seconds = 0.0;
+  std::size_t triangles() const { return slices.triangle_count; }
+};
+
+// A quadtree over the objects' plan boxes: each node's box (3D) holds every object below it.
+struct ObjectTree {
+  struct Node {
+    Box3 box;
+    std::uint32_t first_child = 0;  // children first_child .. first_child + child_count - 1
+    std::uint32_t child_count = 0;  // 0 for a leaf
+    std::uint32_t first = 0, last = 0;  // objects order[first, last)
+  };
+  std::vector<Node> nodes;           // nodes[0] is the root
+  std::vector<std::uint32_t> order;  // object indices
+};
+ObjectTree build_object_tree(const std::vector<Box3>& boxes, std::uint32_t leaf_size = 8);
+
+struct SliceSceneOptions {
+  double epsilon = 1.4142135623730951;  // the view cell's largest distance from its centre
+  Shrinking shrinking = Shrinking::minkowski_mesh;
+  double voxel_m = 0.5;                 // voxel_erosion's grid
+  SlicingOptions slicing;
+  unsigned threads = 0;  // for shrinking and slicing (0: every core); the result does not depend on it
+};
+
+class SliceWiseScene {
+ public:
+  // Throws std::invalid_argument on a bad option.
+  SliceWiseScene(const Scene& scene, const SliceSceneOptions& options);
+  const std::vector<SliceWiseObject>& objects() const { return objects_; }
+  const ObjectTree& tree() const { return tree_; }
+  const SliceSceneOptions& options() const { return options_; }
+  const Scene& scene() const { return scene_; }
+  double slicing_seconds() const { return slicing_seconds_; }
+  double shrinking_seconds() const { return shrinking_seconds_; }  // wall time, all objects
+
+ private:
+  const Scene& scene_;
+  SliceSceneOptions options_;
+  std::vector<SliceWiseObject> objects_;
+  ObjectTree tree_;
+  double slicing_seconds_ = 0.0, shrinking_seconds_ = 0.0;
+};
+
+// A building's closed mesh as a mesh object (the form slicing takes): building_mesh's walls and
+// roof, and a floor.
+MeshObject building_as_mesh(const Building& building);
+
+}  // namespace cullcheck::slice_wise

@@ -1,0 +1,194 @@
+#include "engine/slice_wise/voxel_erosion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace cullcheck::slice_wise {
+namespace {
+
+constexpr double kWiden = 1e-9;  // metres: voxels are widened by this for the touch test
+
+// Whether triangle (a, b, c) meets the box of centre `m` and half-sides `h` (separating axes:
+// the box's three, the triangle's normal, the nine edge-axis cross products).
+bool triangle_meets_box(Vec3 m, Vec3 h, Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 v[3] = {a - m, b - m, c - m};
+  const Vec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  auto separated = [&](Vec3 axis) {
+    const double p0 = dot(axis, v[0]), p1 = dot(axis, v[1]), p2 = dot(axis, v[2]);
+    const double r = h.x * std::abs(axis.x) + h.y * std::abs(axis.y) + h.z * std::abs(axis.z);
+    return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+  };
+  const Vec3 units[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const Vec3& u : units)
+    if (separated(u)) return false;
+  if (separated(cross(e[0], e[1]))) return false;
+  for (const Vec3& u : units)
+    for (const Vec3& edge : e)
+      if (separated(cross(u, edge))) return false;
+  return true;
+}
+
+double orient(Vec2 a, Vec2 b, Vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
+
+}  // namespace
+
+VoxelErosion erode_closed_mesh(const MeshObject& m, double epsilon, double r, std::size_t max_voxels) {
+  if (!(epsilon > 0) || !std::isfinite(epsilon)) throw std::invalid_argument("voxel erosion: epsilon must be positive and finite");
+  if (!(r > 0) || !std::isfinite(r)) throw std::invalid_argument("voxel erosion: voxel size must be positive and finite");
+  VoxelErosion out;
+  if (m.triangles.empty()) return out;
+  const Vec3 lo = m.bounds.lo, hi = m.bounds.hi;
+  auto cells = [&](double extent) { return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(extent / r))); };
+  const std::size_t nx = cells(hi.x - lo.x), ny = cells(hi.y - lo.y), nz = cells(hi.z - lo.z);
+  if (!(double(nx) * double(ny) * double(nz) <= double(max_voxels)))
+    throw std::invalid_argument("voxel erosion: object " + std::to_string(m.id) + " needs more than " + std::to_string(max_voxels) + " voxels");
+  out.voxels = nx * ny * nz;
+  auto at = [&](std::size_t i, std::size_t j, std::size_t k) { return (k * ny + j) * nx + i; };
+  auto index_range = [&](double a, double b, double origin, std::size_t n, std::size_t& first, std::size_t& last) {
+    const double f = std::floor((a - origin) / r), l = std::floor((b - origin) / r);
+    if (l < 0 || f > double(n) - 1) return false;
+    first = static_cast<std::size_t>(std::max(f, 0.0)), last = static_cast<std::size_t>(std::min(l, double(n) - 1));
+    return true;
+  };
+
+  // 1a. Voxels some triangle touches.
+  std::vector<std::uint8_t> touched(out.voxels, 0);
+  const Vec3 half{r / 2 + kWiden, r / 2 + kWiden, r / 2 + kWiden};
+  for (const auto& t : m.triangles) {
+    const Vec3 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+    // The floor (on the object's lowest plane) only bounds voxels from below, where the ground is.
+    if (a.z == lo.z && b.z == lo.z && c.z == lo.z) continue;
+    std::size_t i0, i1, j0, j1, k0, k1;
+    if (!index_range(std::min({a.x, b.x, c.x}) - kWiden, std::max({a.x, b.x, c.x}) + kWiden, lo.x, nx, i0, i1) ||
+        !index_range(std::min({a.y, b.y, c.y}) - kWiden, std::max({a.y, b.y, c.y}) + kWiden, lo.y, ny, j0, j1) ||
+        !index_range(std::min({a.z, b.z, c.z}) - kWiden, std::max({a.z, b.z, c.z}) + kWiden, lo.z, nz, k0, k1))
+      continue;
+    for (std::size_t k = k0; k <= k1; ++k)
+      for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i) {
+          const std::size_t v = at(i, j, k);
+          if (touched[v]) continue;
+          const Vec3 centre{lo.x + (double(i) + 0.5) * r, lo.y + (double(j) + 0.5) * r, lo.z + (double(k) + 0.5) * r};
+          if (triangle_meets_box(centre, half, a, b, c)) touched[v] = 1;
+        }
+  }
+
+  // 1b. Parity along each column's vertical line through the voxel centres.
+  std::vector<std::vector<std::uint32_t>> column_triangles(nx * ny);
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
+    const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+    if (orient({a.x, a.y}, {b.x, b.y}, {c.x, c.y}) == 0.0) continue;  // vertical: no vertical line crosses it
+    const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
+    const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
+    const double fi = std::ceil((x0 - lo.x) / r - 0.5), li = std::floor((x1 - lo.x) / r - 0.5);
+    const double fj = std::ceil((y0 - lo.y) / r - 0.5), lj = std::floor((y1 - lo.y) / r - 0.5);
+    for (double j = std::max(fj, 0.0); j <= std::min(lj, double(ny) - 1); ++j)
+      for (double i = std::max(fi, 0.0); i <= std::min(li, double(nx) - 1); ++i)
+        column_triangles[static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i)].push_back(t);
+  }
+  std::vector<std::uint8_t> solid(out.voxels, 0);
+  std::vector<double> crossings;
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) {
+      const Vec2 p{lo.x + (double(i) + 0.5) * r, lo.y + (double(j) + 0.5) * r};
+      crossings.clear();
+      bool ambiguous = false;
+      for (std::uint32_t t : column_triangles[j * nx + i]) {
+        const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+        const Vec2 pa{a.x, a.y}, pb{b.x, b.y}, pc{c.x, c.y};
+        const double area = orient(pa, pb, pc);
+        const double w0 = orient(pb, pc, p) / area, w1 = orient(pc, pa, p) / area, w2 = orient(pa, pb, p) / area;
+        if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;  // outside in plan
+        if (w0 <= 1e-9 || w1 <= 1e-9 || w2 <= 1e-9) {          // on or near an edge: undecided
+          ambiguous = true;
+          break;
+        }
+        crossings.push_back(w0 * a.z + w1 * b.z + w2 * c.z);
+      }
+      if (ambiguous || crossings.size() % 2 == 1) {
+        ++out.ambiguous_columns;
+        continue;
+      }
+      std::sort(crossings.begin(), crossings.end());
+      for (std::size_t k = 0; k < nz; ++k) {
+        const std::size_t v = at(i, j, k);
+        if (touched[v]) continue;
+        const double z = lo.z + (double(k) + 0.5) * r;
+        const auto above = static_cast<std::size_t>(std::upper_bound(crossings.begin(), crossings.end(), z) - crossings.begin());
+        if (above % 2 == 1) solid[v] = 1, ++out.inside;
+      }
+    }
+
+  // 2. Erosion by a cube of half-side e voxels, one axis at a time (outside the grid: empty, below
+  // it: ground, solid).
+  const long e = static_cast<long>(std::ceil(epsilon / r));
+  std::vector<std::uint8_t> next(out.voxels, 0);
+  auto erode_axis = [&](std::size_t n, std::size_t stride_count, auto&& index, bool ground_below) {
+    std::vector<int> prefix(n + 1);
+    for (std::size_t s = 0; s < stride_count; ++s) {
+      prefix[0] = 0;
+      for (std::size_t q = 0; q < n; ++q) prefix[q + 1] = prefix[q] + solid[index(s, q)];
+      for (std::size_t q = 0; q < n; ++q) {
+        const long from = long(q) - e, to = long(q) + e;
+        bool keep = to < long(n) && (from >= 0 || ground_below);
+        if (keep) {
+          const std::size_t f = static_cast<std::size_t>(std::max(from, 0L)), t = static_cast<std::size_t>(to);
+          keep = prefix[t + 1] - prefix[f] == int(t + 1 - f);
+        }
+        next[index(s, q)] = keep ? 1 : 0;
+      }
+    }
+    solid.swap(next);
+  };
+  erode_axis(nx, ny * nz, [&](std::size_t s, std::size_t q) { return s * nx + q; }, false);
+  erode_axis(ny, nx * nz, [&](std::size_t s, std::size_t q) { return at(s % nx, q, s / nx); }, false);
+  erode_axis(nz, nx * ny, [&](std::size_t s, std::size_t q) { return at(s % nx, s / nx, q); }, true);
+
+  // 3. Boxes.
+  std::vector<std::uint8_t> used(out.voxels, 0);
+  auto free_voxel = [&](std::size_t i, std::size_t j, std::size_t k) { return solid[at(i, j, k)] && !used[at(i, j, k)]; };
+  for (std::size_t k = 0; k < nz; ++k)
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i) {
+        if (!free_voxel(i, j, k)) continue;
+        std::size_t i1 = i, j1 = j, k1 = k;
+        while (i1 + 1 < nx && free_voxel(i1 + 1, j, k)) ++i1;
+        auto row_free = [&](std::size_t jj, std::size_t kk) {
+          for (std::size_t ii = i; ii <= i1; ++ii)
+            if (!free_voxel(ii, jj, kk)) return false;
+          return true;
+        };
+        while (j1 + 1 < ny && row_free(j1 + 1, k)) ++j1;
+        auto layer_free = [&](std::size_t kk) {
+          for (std::size_t jj = j; jj <= j1; ++jj)
+            if (!row_free(jj, kk)) return false;
+          return true;
+        };
+        while (k1 + 1 < nz && layer_free(k1 + 1)) ++k1;
+        for (std::size_t kk = k; kk <= k1; ++kk)
+          for (std::size_t jj = j; jj <= j1; ++jj)
+            for (std::size_t ii = i; ii <= i1; ++ii) used[at(ii, jj, kk)] = 1;
+        out.kept += (i1 - i + 1) * (j1 - j + 1) * (k1 - k + 1);
+        out.boxes.push_back({{lo.x + double(i) * r, lo.y + double(j) * r, lo.z + double(k) * r},
+                             {lo.x + double(i1 + 1) * r, lo.y + double(j1 + 1) * r, lo.z + double(k1 + 1) * r}});
+      }
+  return out;
+}
+
+TriangleMesh boxes_mesh(const std::vector<Box3>& boxes) {
+  TriangleMesh mesh;
+  // Corner c has bit 0 for x, 1 for y, 2 for z; faces counter-clockwise seen from outside.
+  static constexpr std::uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const Box3& b : boxes) {
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    for (int c = 0; c < 8; ++c) mesh.vertices.push_back({(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z});
+    for (const auto& f : faces) {
+      mesh.triangles.push_back({base + f[0], base + f[1], base + f[2]});
+      mesh.triangles.push_back({base + f[0], base + f[2], base + f[3]});
+    }
+  }
+  return mesh;
+}
+
+}  // namespace cullcheck::slice_wise
