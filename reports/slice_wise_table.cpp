@@ -350,7 +350,7 @@ json slice_wise_table(const SliceTableOptions& o) {
   json cities = json::array();
   generators::StreetWalkParams walk;
   walk.frames = o.frames;
-  {
+  if (o.generated) {
     const Scene scene = generators::detailed_city(o.detailed, o.seed);
     cities.push_back(city_row("detailed", scene, generators::street_walk(o.detailed.layout, walk, o.seed), o));
   }
@@ -380,6 +380,7 @@ json slice_wise_table(const SliceTableOptions& o) {
   replay << "cullcheck report --slice-table --slice-frames " << o.frames << " --slice-cell " << o.cell_side
          << " --slice-oracle-cells " << o.oracle_cells;
   if (!o.cityjson.empty()) replay << " --slice-cityjson " << o.cityjson;
+  if (!o.generated) replay << " --slice-no-generated";
   replay << " --method frustum --path-params '{\"frames\":1}' -o slice/report.json";
   table["replay"] = replay.str();
   return table;

@@ -34,6 +34,7 @@ struct SliceTableOptions {
   slice_wise::SlicingOptions slicing;
   int oracle_cells = 4;               // cells checked by the oracle, spread over the walk
   std::string cityjson;               // a LoD2 CityJSON file for the real-city row; empty: none
+  bool generated = true;              // the generated detailed city's row (false: the CityJSON file's only)
   // The runs: as published (Minkowski vertex shrinking, other objects only), then the corrected
   // occluders (voxel erosion), then with each object's own shrunk solid as an occluder too.
   struct Run {

@@ -187,6 +187,8 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--slice-cityjson", f->slice_table_options.cityjson,
                   "A LoD2 CityJSON file measured by --slice-table too (each Building and BuildingPart a mesh)")
       ->check(CLI::ExistingFile);
+  sub->add_flag("--slice-no-generated{false}", f->slice_table_options.generated,
+                "Leave the generated detailed city out of --slice-table (measure --slice-cityjson alone)");
   sub->add_flag("--radar-table", f->radar_table,
                 "Also measure radar echo over terrain as thesis ch. 3.3 did: Table 3.3 on a generated terrain of the thesis's size "
                 "(--radar-grids, 60 and 360 degrees, both rules, the oracle's witnessed count), the same on --radar-dem, growth with "
