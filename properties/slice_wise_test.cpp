@@ -148,8 +148,11 @@ TEST(Algorithm3, TheBestFormKeepsEveryTriangleItMust) {
     }
     const SliceChoice c = best_form_keeping(o, keep);
     const std::vector<std::uint32_t> drawn = rendering_set(o.slices, c.indices);
-    for (std::size_t t = 0; t < keep.size(); ++t)
-      if (keep[t]) ASSERT_TRUE(std::binary_search(drawn.begin(), drawn.end(), std::uint32_t(t))) << "seed " << seed << " triangle " << t;
+    for (std::size_t t = 0; t < keep.size(); ++t) {
+      if (keep[t]) {
+        ASSERT_TRUE(std::binary_search(drawn.begin(), drawn.end(), std::uint32_t(t))) << "seed " << seed << " triangle " << t;
+      }
+    }
     EXPECT_EQ(c.dropped, m.triangles.size() - drawn.size());
     EXPECT_GT(c.dropped, 0u) << "seed " << seed;
   }

@@ -164,13 +164,11 @@ CellPvs CellCuller::cull(Vec3 centre) {
         for (std::size_t a = 0; a < 2; ++a) {
           const AxisSlices& s = obj.slices.axes[a];
           for (std::size_t i = 0; i < s.count(); ++i) {
-            Box3 slab = obj.box;
-            const double lo = s.origin + s.slab[i] * s.thickness, hi = s.origin + (s.slab[i] + 1.0) * s.thickness;
-            (a == 0 ? slab.lo.x : slab.lo.y) = std::max(lo, a == 0 ? obj.box.lo.x : obj.box.lo.y);
-            (a == 0 ? slab.hi.x : slab.hi.y) = std::min(hi, a == 0 ? obj.box.hi.x : obj.box.hi.y);
+            const Box3& slab = obj.slice_boxes[a][i];
             auto hidden_to = [&](int k) {
               Box3 b = slab;
-              b.hi.z = k >= steps ? obj.box.hi.z : obj.box.lo.z + k * options_.delta;
+              if (k < steps) b.hi.z = std::min(b.hi.z, obj.box.lo.z + k * options_.delta);
+              if (b.hi.z < b.lo.z) return true;  // nothing of the slice that low
               return zoom_hidden(b, stats);
             };
             int lo_k = 0, hi_k = steps;  // largest k whose box is hidden (0: none)
@@ -182,12 +180,8 @@ CellPvs CellCuller::cull(Vec3 centre) {
             occ.hidden_height[a].push_back(lo_k >= steps ? height : lo_k * options_.delta);
           }
         }
-        const AxisSlices& zs = obj.slices.axes[2];
-        for (std::size_t j = 0; j < zs.count(); ++j) {
-          Box3 slab = obj.box;
-          slab.lo.z = std::max(obj.box.lo.z, zs.origin + zs.slab[j] * zs.thickness);
-          slab.hi.z = std::min(obj.box.hi.z, zs.origin + (zs.slab[j] + 1.0) * zs.thickness);
-          occ.z_hidden.push_back(zoom_hidden(slab, stats) ? 1 : 0);
+        for (std::size_t j = 0; j < obj.slices.axes[2].count(); ++j) {
+          occ.z_hidden.push_back(zoom_hidden(obj.slice_boxes[2][j], stats) ? 1 : 0);
         }
         v.choice = choose_slices(obj, occ);
         v.indices = v.choice.indices;

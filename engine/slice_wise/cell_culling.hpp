@@ -16,7 +16,10 @@
 // other object's shrunk occluder in that view drawn front to back (again skipping hidden ones and
 // those wholly behind the candidate), the box tested, and if visible, Algorithm 2: each vertical
 // slice's hidden height (boxes of height Δ, 2Δ, ... from the bottom; found by bisection, since a
-// taller box is hidden only if a lower one is) and each horizontal slice tested whole.
+// taller box is hidden only if a lower one is) and each horizontal slice tested whole. A slice's
+// box is the box of its own triangles cut to its slab (slice_scene.hpp), which holds every
+// triangle of the slice and leaves out the empty parts of the object's box (beside a tower, above
+// a podium).
 //
 // Deviation, stated: the paper's loop tests heights k Δ while k Δ <= the slice's height, so a slice
 // whose height is not a multiple of Δ is never hidden whole; here the last height is the slice's

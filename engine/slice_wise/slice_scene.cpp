@@ -22,6 +22,23 @@ Box3 box_of(const TriangleMesh& m) {
   return b;
 }
 
+void fill_slice_boxes(SliceWiseObject& o, const MeshObject& m) {
+  for (std::size_t a = 0; a < 3; ++a) {
+    const AxisSlices& s = o.slices.axes[a];
+    auto& boxes = o.slice_boxes[a];
+    boxes.assign(s.count(), Box3{});
+    for (std::size_t i = 0; i < s.count(); ++i) {
+      Box3& b = boxes[i];
+      for (std::uint32_t k = s.begin[i]; k < s.begin[i + 1]; ++k)
+        for (std::uint32_t v : m.triangles[s.triangles[k]]) b.extend(m.vertices[v]);
+      const double lo = s.origin + s.slab[i] * s.thickness, hi = s.origin + (s.slab[i] + 1.0) * s.thickness;
+      double& blo = a == 0 ? b.lo.x : a == 1 ? b.lo.y : b.lo.z;
+      double& bhi = a == 0 ? b.hi.x : a == 1 ? b.hi.y : b.hi.z;
+      blo = std::max(blo, lo), bhi = std::min(bhi, hi);
+    }
+  }
+}
+
 void fill_ranges(SliceWiseObject& o) {
   o.ranges.assign(o.slices.triangle_count, {255, 0, 255, 0, 255, 0});
   for (std::size_t a = 0; a < 3; ++a) {
@@ -131,6 +148,7 @@ SliceWiseScene::SliceWiseScene(const Scene& scene, const SliceSceneOptions& opti
       auto t = Clock::now();
       o.slices = slice_object(m, options.slicing);
       fill_ranges(o);
+      fill_slice_boxes(o, m);
       slice_time[i] = seconds_since(t);
       t = Clock::now();
       if (options.shrinking == Shrinking::voxel_erosion && m.closed) {

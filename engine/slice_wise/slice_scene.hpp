@@ -37,6 +37,9 @@ struct SliceWiseObject {
   SlicedObject slices;
   // Per triangle, its slice index ranges: x first/last, y first/last, z first/last.
   std::vector<std::array<std::uint8_t, 6>> ranges;
+  // Per axis and slice: the box of the slice's triangles cut to its slab (what Algorithm 2 tests:
+  // every triangle of the slice lies in it, and it leaves out the empty parts of the object's box).
+  std::array<std::vector<Box3>, 3> slice_boxes;
   TriangleMesh occluder;        // shrunk by ε; may be empty (every face dropped)
   Box3 occluder_box;            // of the occluder's kept triangles
   MeshShrinkStatistics shrink;  // minkowski_mesh
