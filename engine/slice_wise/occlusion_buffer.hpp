@@ -10,8 +10,10 @@
 //
 //   D(Q) = the least d such that the triangles whose depth over Q is at most d cover Q entirely.
 //
-// A box is hidden in Q when D(Q) is less than the box's nearest depth: every ray through Q then
-// meets an occluder before it can reach any point of the box. Coverage is decided geometrically
+// A box is hidden in Q when D(Q) is less than the box's least depth over Q: every ray through Q
+// then meets an occluder before it can reach any point of the box. That least depth comes from
+// the box's faces turned to the eye (a ray enters the box through one of them; 1/depth is affine
+// over each face's projection), and is never taken below the box's least depth overall. Coverage is decided geometrically
 // (the square minus the projected triangles, nearest first, as convex pieces), so occluders fuse
 // inside a pixel as well as across pixels, and nothing thinner than a pixel is ever lost between
 // samples: a box this buffer calls hidden has no point visible from the eye against the drawn
@@ -100,7 +102,7 @@ class OcclusionBuffer {
   // testing pixels.
   BoxVisibility locate_box(const Box3& box) const { std::vector<Vec2> hull; return locate_box(box, hull); }
   // locate_box, then whether any pixel of the box's projection inside the image is not covered
-  // in front of the box's nearest depth. Stops at the first such pixel.
+  // in front of the box's least depth over that pixel. Stops at the first such pixel.
   BoxVisibility test_box(const Box3& box);
 
   const BufferStatistics& statistics() const { return stats_; }
