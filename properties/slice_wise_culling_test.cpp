@@ -77,11 +77,13 @@ void check_case(Counts& counts, double shrink_epsilon_share) {
   const CellPvs pvs = culler.cull(centre);
   // What the indices keep, per object id: nothing (absent), or the triangles kept.
   std::map<ObjectId, std::vector<char>> kept;
+  std::map<ObjectId, bool> cut;  // the indices drop part of the object
   for (const ObjectVisibility& ov : pvs.visible) {
     const SliceWiseObject& o = prepared.objects()[ov.object];
     std::vector<char> k(o.triangles(), 0);
     for (std::uint32_t t : rendering_set(o.slices, ov.indices)) k[t] = 1;
     kept.emplace(o.id, std::move(k));
+    cut.emplace(o.id, ov.choice.dropped > 0);
     counts.cut_objects += ov.choice.dropped > 0;
   }
 
@@ -104,8 +106,7 @@ void check_case(Counts& counts, double shrink_epsilon_share) {
       const std::uint32_t local = prim - mesh.first_triangle[owner];
       ++counts.witnessed_triangles;
       const auto it = kept.find(id);
-      const bool cut = it != kept.end() && std::count(it->second.begin(), it->second.end(), 0) > 0;
-      counts.witnessed_in_cut_objects += cut;
+      counts.witnessed_in_cut_objects += it != kept.end() && cut.at(id);
       if (it != kept.end() && (owner < mesh.building_count || it->second[local])) continue;
       ++counts.violations;
       // A witness must stand re-cast in double precision (the oracle casts in single).

@@ -60,13 +60,33 @@ bool inside_some_box(const SliceWiseScene& prepared, Vec3 p) {
   return false;
 }
 
-// One city and one way of shrinking: prepare, cull the walk's cells, render the walk, check some
-// cells with the oracle. Table 1 (the model) is the same for every way of shrinking.
+// The walk's view cells, in the order the walk enters them, and each frame's cell: the same for
+// every run of a city (the oracle's cache is keyed by these cell numbers).
+struct WalkCells {
+  std::vector<Vec3> centres;  // at the eye height of the frame that entered the cell
+  std::vector<std::size_t> frame_cell;
+};
+
+WalkCells walk_cells(const CameraPath& walk, double side) {
+  WalkCells out;
+  std::map<CellKey, std::size_t> cell_of;
+  for (const Camera& c : walk.frames) {
+    const CellKey k{static_cast<long long>(std::floor(c.position.x / side)), static_cast<long long>(std::floor(c.position.y / side))};
+    const auto [it, added] = cell_of.emplace(k, out.centres.size());
+    if (added) out.centres.push_back({(double(k.i) + 0.5) * side, (double(k.j) + 0.5) * side, c.position.z});
+    out.frame_cell.push_back(it->second);
+  }
+  return out;
+}
+
 // The oracle's witnessed triangles by (walk cell, eye): the same for every run of a city.
 using WitnessCache = std::map<std::pair<std::size_t, int>, oracle::TriangleWitnesses>;
 
-json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions& o, const SliceTableOptions::Run& run,
-             const oracle::Oracle& truth, WitnessCache& cache, json& table_1) {
+// One city and one way of shrinking: prepare, cull the walk's cells, render the walk, check some
+// cells with the oracle. Table 1 (the model) is the same for every way of shrinking: the first
+// run fills it.
+json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_cells_of_city, const SliceTableOptions& o,
+             const SliceTableOptions::Run& run, const oracle::Oracle& truth, WitnessCache& cache, json& table_1) {
   json row;
   const Shrinking shrinking = run.shrinking;
   row["shrinking"] = shrinking_name(shrinking);
@@ -99,24 +119,17 @@ json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions
     shrink_s.push_back(ob.shrink_seconds);
     extent.extend(ob.box.lo), extent.extend(ob.box.hi);
   }
-  table_1 = {{"triangles", triangles},
-                    {"objects", objects.size()},
-                    {"triangles_per_object_median", median(tris_per_object)},
-                    {"model_size_m", {extent.hi.x - extent.lo.x, extent.hi.y - extent.lo.y}},
-                    {"view_cell_m", {side, side}},
-                    {"epsilon_m", epsilon},
-                    {"navigable_cells", navigable_cells(prepared, side)}};
+  if (table_1.is_null())
+    table_1 = {{"triangles", triangles},
+               {"objects", objects.size()},
+               {"triangles_per_object_median", median(tris_per_object)},
+               {"model_size_m", {extent.hi.x - extent.lo.x, extent.hi.y - extent.lo.y}},
+               {"view_cell_m", {side, side}},
+               {"epsilon_m", epsilon},
+               {"navigable_cells", navigable_cells(prepared, side)}};
 
-  // The walk's cells, in the order the walk enters them.
-  std::map<CellKey, std::size_t> cell_of;
-  std::vector<Vec3> centres;
-  std::vector<std::size_t> frame_cell;
-  for (const Camera& c : walk.frames) {
-    const CellKey k{static_cast<long long>(std::floor(c.position.x / side)), static_cast<long long>(std::floor(c.position.y / side))};
-    const auto [it, added] = cell_of.emplace(k, centres.size());
-    if (added) centres.push_back({(double(k.i) + 0.5) * side, (double(k.j) + 0.5) * side, c.position.z});
-    frame_cell.push_back(it->second);
-  }
+  const std::vector<Vec3>& centres = walk_cells_of_city.centres;
+  const std::vector<std::size_t>& frame_cell = walk_cells_of_city.frame_cell;
   std::vector<CellPvs> cells(centres.size());
   start = Clock::now();
   for_each_index(centres.size(), o.threads, [&] {
@@ -126,7 +139,7 @@ json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions
   const double cells_wall_s = seconds_since(start);
 
   // Table 2 and the premise.
-  std::vector<double> cell_ms, pvs_sizes, candidates, queries;
+  std::vector<double> cell_ms, pvs_sizes, candidates, queries, blocks_hidden, occluders_drawn, triangles_drawn;
   std::size_t partial = 0, fits = 0, given_up = 0, kept_slice = 0, refused = 0;
   std::map<std::string, std::size_t> forms;
   for (const CellPvs& c : cells) {
@@ -134,6 +147,9 @@ json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions
     pvs_sizes.push_back(static_cast<double>(c.visible.size()));
     candidates.push_back(static_cast<double>(c.stats.coarse_candidates));
     queries.push_back(static_cast<double>(c.stats.queries));
+    blocks_hidden.push_back(static_cast<double>(c.stats.coarse_blocks_hidden));
+    occluders_drawn.push_back(static_cast<double>(c.stats.occluders_drawn));
+    triangles_drawn.push_back(static_cast<double>(c.stats.triangles_drawn));
     for (const ObjectVisibility& v : c.visible) {
       refused += v.zoom_refused;
       if (!v.choice.any_hidden_cell) continue;
@@ -164,6 +180,9 @@ json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions
                     {"pvs_objects_median", median(pvs_sizes)},
                     {"coarse_candidates_median", median(candidates)},
                     {"queries_median", median(queries)},
+                    {"coarse_blocks_hidden_median", median(blocks_hidden)},
+                    {"occluders_drawn_median", median(occluders_drawn)},
+                    {"occluder_triangles_drawn_median", median(triangles_drawn)},
                     {"zoom_refused", refused},
                     {"threads", thread_count(o.threads, centres.size())}};
   json form_counts = json::object();
@@ -229,11 +248,13 @@ json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions
   const std::size_t checked = std::min<std::size_t>(static_cast<std::size_t>(std::max(o.oracle_cells, 0)), centres.size());
   for (std::size_t k = 0; k < checked; ++k) {
     const std::size_t ci = k * centres.size() / checked;
-    std::map<std::size_t, std::vector<char>> kept, seen_by_cell;
+    std::map<std::size_t, std::vector<char>> kept, seen_by_cell;  // by object: triangles kept, witnessed
+    std::map<std::size_t, bool> cut;                               // by object: the indices drop part of it
     for (const ObjectVisibility& v : cells[ci].visible) {
       std::vector<char> bits(objects[v.object].triangles(), 0);
       for (std::uint32_t t : rendering_set(objects[v.object].slices, v.indices)) bits[t] = 1;
       kept.emplace(v.object, std::move(bits));
+      cut.emplace(v.object, v.choice.dropped > 0);
     }
     const Vec3 c = centres[ci];
     for (int a = -1; a <= 1; ++a)
@@ -261,7 +282,7 @@ json run_row(const Scene& scene, const CameraPath& walk, const SliceTableOptions
             bits[local] = 1;
           }
           const auto it = kept.find(object);
-          if (it != kept.end() && std::count(it->second.begin(), it->second.end(), 0) > 0) ++in_cut;
+          if (it != kept.end() && cut.at(object)) ++in_cut;
           if (it != kept.end() && (!mesh_object || it->second[local])) continue;
           ++violations;
           if (examples.size() < 5)
@@ -338,7 +359,9 @@ json city_row(const std::string& name, const Scene& scene, const CameraPath& wal
   const oracle::Oracle truth(scene);
   WitnessCache cache;
   json runs = json::array();
-  for (const SliceTableOptions::Run& r : o.runs) runs.push_back(run_row(scene, walk, o, r, truth, cache, city["table_1"]));
+  const WalkCells cells = walk_cells(walk, o.cell_side);
+  for (const SliceTableOptions::Run& r : o.runs)
+    runs.push_back(run_row(scene, walk, cells, o, r, truth, cache, city["table_1"]));
   city["runs"] = runs;
   return city;
 }

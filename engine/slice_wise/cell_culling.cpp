@@ -187,13 +187,6 @@ CellPvs CellCuller::cull(Vec3 centre) {
         v.indices = v.choice.indices;
       }
     }
-    v.choice.cell_dropped = std::max(v.choice.cell_dropped, v.choice.dropped);
-    ++stats.visible;
-    stats.partially_visible += v.choice.any_hidden_cell;
-    stats.reduced += v.choice.dropped > 0;
-    stats.triangles_object_level += obj.triangles();
-    stats.triangles_slice_level += obj.triangles() - v.choice.dropped;
-    stats.triangles_cell_level += obj.triangles() - v.choice.cell_dropped;
     out.visible.push_back(v);
   }
   stats.fine_ms = ms_since(start);

@@ -55,18 +55,13 @@ struct ObjectVisibility {
   bool zoom_refused = false;  // too close or too wide to zoom on: kept whole
 };
 
+// The cost of one cell (what it decided is CellPvs::visible and each one's SliceChoice).
 struct CellStatistics {
-  std::size_t coarse_blocks_hidden = 0;
-  std::size_t coarse_candidates = 0;    // objects whose box the cube map did not hide
-  std::size_t visible = 0;              // after the zoomed box test
-  std::size_t partially_visible = 0;    // Algorithm 2 found some part hidden
-  std::size_t reduced = 0;              // Algorithm 3 dropped some triangles
-  std::size_t queries = 0;              // box tests of slices and heights
-  std::size_t occluders_drawn = 0;      // occluder meshes drawn, cube and zoomed views together
+  std::size_t coarse_blocks_hidden = 0;  // quadtree blocks the cube map hid whole
+  std::size_t coarse_candidates = 0;     // objects whose box the cube map did not hide
+  std::size_t queries = 0;               // box tests of candidates, slices and heights in zoomed views
+  std::size_t occluders_drawn = 0;       // occluder meshes drawn, cube and zoomed views together
   std::size_t triangles_drawn = 0;
-  std::size_t triangles_object_level = 0;  // every visible object whole
-  std::size_t triangles_slice_level = 0;   // the visible objects' rendering sets
-  std::size_t triangles_cell_level = 0;    // what per-cell slice visibility would keep
   double coarse_ms = 0.0, fine_ms = 0.0;
 };
 

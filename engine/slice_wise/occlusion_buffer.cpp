@@ -356,7 +356,7 @@ BoxVisibility OcclusionBuffer::locate_box(const Box3& box, std::vector<Vec2>& hu
 }
 
 BoxVisibility OcclusionBuffer::test_box(const Box3& box) {
-  std::vector<Vec2> hull;
+  std::vector<Vec2>& hull = hull_;
   BoxVisibility out = locate_box(box, hull);
   ++stats_.box_tests;
   if (!out.in_image) return out;

@@ -100,7 +100,7 @@ class OcclusionBuffer {
   void draw_triangle(Vec3 a, Vec3 b, Vec3 c);
   // The depth range of `box` in this view and whether its projection meets the image, without
   // testing pixels.
-  BoxVisibility locate_box(const Box3& box) const { std::vector<Vec2> hull; return locate_box(box, hull); }
+  BoxVisibility locate_box(const Box3& box) const { return locate_box(box, hull_); }
   // locate_box, then whether any pixel of the box's projection inside the image is not covered
   // in front of the box's least depth over that pixel. Stops at the first such pixel.
   BoxVisibility test_box(const Box3& box);
@@ -129,7 +129,8 @@ class OcclusionBuffer {
   std::vector<std::uint8_t> dirty_;
   std::vector<std::int32_t> head_;         // fragment list per pixel
   std::vector<Fragment> fragments_;
-  std::vector<ConvexPolygon> polygons_;  // drawn triangles in pixel coordinates, clipped to the guard band
+  std::vector<ConvexPolygon> polygons_;
+  mutable std::vector<Vec2> hull_;  // scratch of the box tests (called per occluder, block and slice)  // drawn triangles in pixel coordinates, clipped to the guard band
   BufferStatistics stats_;
 };
 
