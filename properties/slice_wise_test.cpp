@@ -11,6 +11,7 @@
 #include "engine/slice_wise/slice_rectangle.hpp"
 #include "engine/slice_wise/slice_scene.hpp"
 #include "engine/slice_wise/slicing.hpp"
+#include "engine/slice_wise/solid_parts.hpp"
 #include "engine/slice_wise/voxel_erosion.hpp"
 #include "generators/detailed_buildings.hpp"
 
@@ -194,6 +195,75 @@ TEST(VoxelErosion, ADetailedBuildingsBoxesLieInsideItsBoxShrunkByEpsilon) {
   EXPECT_GT(volume, 1000.0) << "the tower's core survives its window recesses";
   EXPECT_EQ(boxes_mesh(e.boxes).triangles.size(), 12 * e.boxes.size());
   EXPECT_THROW(erode_closed_mesh(m, eps, 0.5, 1000), std::invalid_argument);
+}
+
+// A podium [0, 10]^2 x [0, 6] with a tower [2, 8]^2 x [6, 20] standing on it: two closed boxes
+// sharing no vertex, as the detailed generator and CityJSON parts make them.
+MeshObject podium_and_tower() {
+  const TriangleMesh t = boxes_mesh({{{0, 0, 0}, {10, 10, 6}}, {{2, 2, 6}, {8, 8, 20}}});
+  MeshObject m;
+  m.vertices = t.vertices, m.triangles = t.triangles;
+  finish_mesh(m);
+  return m;
+}
+
+bool in_some_box(const std::vector<Box3>& boxes, Vec3 p) {
+  for (const Box3& b : boxes)
+    if (b.lo.x <= p.x && p.x <= b.hi.x && b.lo.y <= p.y && p.y <= b.hi.y && b.lo.z <= p.z && p.z <= b.hi.z) return true;
+  return false;
+}
+
+TEST(SolidParts, FindsTheFaceBetweenAPodiumAndItsTower) {
+  const MeshObject m = podium_and_tower();
+  ASSERT_TRUE(m.closed);
+  const SolidParts parts = solid_parts(m);
+  EXPECT_EQ(parts.parts, 2u);
+  // The tower's floor lies on the podium's roof: interior. The roof is interior under the tower
+  // only: partly, its boundary the ring around the tower.
+  EXPECT_EQ(parts.interior_count, 2u);
+  EXPECT_EQ(parts.partly_count, 2u);
+  double ring = 0;
+  for (const auto& [t, pieces] : parts.boundary_pieces) {
+    EXPECT_EQ(parts.cover[t], SolidParts::partly);
+    for (const auto& piece : pieces) {
+      for (const Vec3& v : piece) EXPECT_DOUBLE_EQ(v.z, 6.0);
+      for (std::size_t k = 0; k < piece.size(); ++k) {
+        const Vec3 a = piece[k], b = piece[(k + 1) % piece.size()];
+        ring += 0.5 * (a.x * b.y - a.y * b.x);
+      }
+    }
+  }
+  EXPECT_NEAR(ring, 100.0 - 36.0, 1e-9) << "the roof less the tower's floor";
+}
+
+TEST(VoxelErosion, ErodesThePodiumAndTowerAsOneSolid) {
+  const MeshObject m = podium_and_tower();
+  const double eps = 1.4142135623730951;
+  const VoxelErosion e = erode_closed_mesh(m, eps, 0.5);
+  EXPECT_EQ(e.solids, 2u);
+  EXPECT_EQ(e.interior_triangles, 2u);
+  EXPECT_EQ(e.partly_interior_triangles, 2u);
+  EXPECT_EQ(e.ambiguous_columns, 0u) << "the roofs' diagonals pass through column centres: other lines decide";
+  // Without the shared face taken as inside, the voxels touching it would be outside and erosion
+  // would cut a slot from z = 4 to z = 8 through the building.
+  for (double z : {3.9, 5.0, 6.0, 7.0, 8.1, 17.9}) EXPECT_TRUE(in_some_box(e.boxes, {5, 5, z})) << "z = " << z;
+  EXPECT_FALSE(in_some_box(e.boxes, {5, 5, 18.1})) << "the tower's top, eroded";
+  EXPECT_FALSE(in_some_box(e.boxes, {3.9, 5, 10})) << "the tower's wall, eroded";
+  EXPECT_TRUE(in_some_box(e.boxes, {2.1, 5, 3.9})) << "the podium's core";
+  // Conservative: every kept box, grown by ε, stays inside the podium or the tower (sampled).
+  auto in_union = [](Vec3 p) {
+    const bool podium = p.x >= 0 && p.x <= 10 && p.y >= 0 && p.y <= 10 && p.z <= 6;
+    const bool tower = p.x >= 2 && p.x <= 8 && p.y >= 2 && p.y <= 8 && p.z >= 6 && p.z <= 20;
+    return podium || tower;
+  };
+  for (const Box3& b : e.boxes)
+    for (double x = b.lo.x - eps; x <= b.hi.x + eps + 1e-9; x += 0.25)
+      for (double y = b.lo.y - eps; y <= b.hi.y + eps + 1e-9; y += 0.25)
+        for (double z = std::max(b.lo.z - eps, 0.0); z <= b.hi.z + eps + 1e-9; z += 0.25) {
+          const Vec3 p{x, y, z};
+          if (length(p - Vec3{std::clamp(x, b.lo.x, b.hi.x), std::clamp(y, b.lo.y, b.hi.y), std::clamp(z, b.lo.z, b.hi.z)}) > eps) continue;
+          ASSERT_TRUE(in_union(p)) << x << " " << y << " " << z;
+        }
 }
 
 TEST(Slicing, RefusesMoreSlicesThanAByteHolds) {

@@ -4,28 +4,34 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/slice_wise/solid_parts.hpp"
+
 namespace cullcheck::slice_wise {
 namespace {
 
 constexpr double kWiden = 1e-9;  // metres: voxels are widened by this for the touch test
 
-// Whether triangle (a, b, c) meets the box of centre `m` and half-sides `h` (separating axes:
-// the box's three, the triangle's normal, the nine edge-axis cross products).
-bool triangle_meets_box(Vec3 m, Vec3 h, Vec3 a, Vec3 b, Vec3 c) {
-  const Vec3 v[3] = {a - m, b - m, c - m};
-  const Vec3 e[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+// Whether convex planar polygon `poly` meets the box of centre `m` and half-sides `h` (separating
+// axes: the box's three, the polygon's normal, each edge crossed with each box axis).
+bool polygon_meets_box(Vec3 m, Vec3 h, const Vec3* poly, std::size_t n) {
   auto separated = [&](Vec3 axis) {
-    const double p0 = dot(axis, v[0]), p1 = dot(axis, v[1]), p2 = dot(axis, v[2]);
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double p = dot(axis, poly[k] - m);
+      lo = std::min(lo, p), hi = std::max(hi, p);
+    }
     const double r = h.x * std::abs(axis.x) + h.y * std::abs(axis.y) + h.z * std::abs(axis.z);
-    return std::min({p0, p1, p2}) > r || std::max({p0, p1, p2}) < -r;
+    return lo > r || hi < -r;
   };
   const Vec3 units[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (const Vec3& u : units)
     if (separated(u)) return false;
-  if (separated(cross(e[0], e[1]))) return false;
+  Vec3 normal;  // Newell's: robust when three points in a row are collinear
+  for (std::size_t k = 0; k < n; ++k) normal = normal + cross(poly[k] - m, poly[(k + 1) % n] - m);
+  if (separated(normal)) return false;
   for (const Vec3& u : units)
-    for (const Vec3& edge : e)
-      if (separated(cross(u, edge))) return false;
+    for (std::size_t k = 0; k < n; ++k)
+      if (separated(cross(u, poly[(k + 1) % n] - poly[k]))) return false;
   return true;
 }
 
@@ -52,71 +58,96 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, double epsilon, double r, st
     return true;
   };
 
-  // 1a. Voxels some triangle touches.
+  // 1a. Voxels some triangle of the union's boundary touches (faces between two solids of the
+  // object are inside it).
+  const SolidParts parts = solid_parts(m);
+  out.solids = parts.parts, out.interior_triangles = parts.interior_count, out.partly_interior_triangles = parts.partly_count;
   std::vector<std::uint8_t> touched(out.voxels, 0);
   const Vec3 half{r / 2 + kWiden, r / 2 + kWiden, r / 2 + kWiden};
-  for (const auto& t : m.triangles) {
-    const Vec3 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
-    // The floor (on the object's lowest plane) only bounds voxels from below, where the ground is.
-    if (a.z == lo.z && b.z == lo.z && c.z == lo.z) continue;
+  // Marks the voxels convex polygon `poly` (n points) touches.
+  auto touch = [&](const Vec3* poly, std::size_t n) {
+    Box3 b;
+    for (std::size_t k = 0; k < n; ++k) b.extend(poly[k]);
     std::size_t i0, i1, j0, j1, k0, k1;
-    if (!index_range(std::min({a.x, b.x, c.x}) - kWiden, std::max({a.x, b.x, c.x}) + kWiden, lo.x, nx, i0, i1) ||
-        !index_range(std::min({a.y, b.y, c.y}) - kWiden, std::max({a.y, b.y, c.y}) + kWiden, lo.y, ny, j0, j1) ||
-        !index_range(std::min({a.z, b.z, c.z}) - kWiden, std::max({a.z, b.z, c.z}) + kWiden, lo.z, nz, k0, k1))
-      continue;
+    if (!index_range(b.lo.x - kWiden, b.hi.x + kWiden, lo.x, nx, i0, i1) || !index_range(b.lo.y - kWiden, b.hi.y + kWiden, lo.y, ny, j0, j1) ||
+        !index_range(b.lo.z - kWiden, b.hi.z + kWiden, lo.z, nz, k0, k1))
+      return;
     for (std::size_t k = k0; k <= k1; ++k)
       for (std::size_t j = j0; j <= j1; ++j)
         for (std::size_t i = i0; i <= i1; ++i) {
           const std::size_t v = at(i, j, k);
           if (touched[v]) continue;
           const Vec3 centre{lo.x + (double(i) + 0.5) * r, lo.y + (double(j) + 0.5) * r, lo.z + (double(k) + 0.5) * r};
-          if (triangle_meets_box(centre, half, a, b, c)) touched[v] = 1;
+          if (polygon_meets_box(centre, half, poly, n)) touched[v] = 1;
         }
+  };
+  for (std::uint32_t ti = 0; ti < m.triangles.size(); ++ti) {
+    const auto& t = m.triangles[ti];
+    const Vec3 corners[3] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
+    // The floor (on the object's lowest plane) only bounds voxels from below, where the ground is.
+    if (corners[0].z == lo.z && corners[1].z == lo.z && corners[2].z == lo.z) continue;
+    if (parts.cover[ti] == SolidParts::interior) continue;
+    if (parts.cover[ti] == SolidParts::partly) {
+      for (const auto& piece : parts.boundary_pieces.at(ti)) touch(piece.data(), piece.size());
+      continue;
+    }
+    touch(corners, 3);
   }
 
-  // 1b. Parity along each column's vertical line through the voxel centres.
+  // 1b. Parity along a vertical line through each column, solid by solid: a point is inside the
+  // union when it is inside one of them. An untouched voxel is wholly inside or outside, so any
+  // line through the column decides it: the centre's first, then a few others when the centre's
+  // passes near an edge (the diagonal of a square roof does, for every column on it).
   std::vector<std::vector<std::uint32_t>> column_triangles(nx * ny);
   for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
     const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
     if (orient({a.x, a.y}, {b.x, b.y}, {c.x, c.y}) == 0.0) continue;  // vertical: no vertical line crosses it
     const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
     const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
-    const double fi = std::ceil((x0 - lo.x) / r - 0.5), li = std::floor((x1 - lo.x) / r - 0.5);
-    const double fj = std::ceil((y0 - lo.y) / r - 0.5), lj = std::floor((y1 - lo.y) / r - 0.5);
+    const double fi = std::ceil((x0 - lo.x) / r - 1), li = std::floor((x1 - lo.x) / r);  // columns its plan box meets
+    const double fj = std::ceil((y0 - lo.y) / r - 1), lj = std::floor((y1 - lo.y) / r);
     for (double j = std::max(fj, 0.0); j <= std::min(lj, double(ny) - 1); ++j)
       for (double i = std::max(fi, 0.0); i <= std::min(li, double(nx) - 1); ++i)
         column_triangles[static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i)].push_back(t);
   }
   std::vector<std::uint8_t> solid(out.voxels, 0);
-  std::vector<double> crossings;
+  std::vector<std::vector<double>> crossings(std::max<std::uint32_t>(parts.parts, 1));
   for (std::size_t j = 0; j < ny; ++j)
     for (std::size_t i = 0; i < nx; ++i) {
-      const Vec2 p{lo.x + (double(i) + 0.5) * r, lo.y + (double(j) + 0.5) * r};
-      crossings.clear();
-      bool ambiguous = false;
-      for (std::uint32_t t : column_triangles[j * nx + i]) {
-        const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
-        const Vec2 pa{a.x, a.y}, pb{b.x, b.y}, pc{c.x, c.y};
-        const double area = orient(pa, pb, pc);
-        const double w0 = orient(pb, pc, p) / area, w1 = orient(pc, pa, p) / area, w2 = orient(pa, pb, p) / area;
-        if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;  // outside in plan
-        if (w0 <= 1e-9 || w1 <= 1e-9 || w2 <= 1e-9) {          // on or near an edge: undecided
-          ambiguous = true;
-          break;
+      // Where the line crosses each solid; false when it passes within 1e-9 of an edge (in
+      // barycentric terms) or crosses a solid an odd number of times.
+      auto cross_at = [&](Vec2 p) {
+        for (auto& c : crossings) c.clear();
+        for (std::uint32_t t : column_triangles[j * nx + i]) {
+          const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+          const Vec2 pa{a.x, a.y}, pb{b.x, b.y}, pc{c.x, c.y};
+          const double area = orient(pa, pb, pc);
+          const double w0 = orient(pb, pc, p) / area, w1 = orient(pc, pa, p) / area, w2 = orient(pa, pb, p) / area;
+          if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;  // outside in plan
+          if (w0 <= 1e-9 || w1 <= 1e-9 || w2 <= 1e-9) return false;
+          crossings[parts.part_of[t]].push_back(w0 * a.z + w1 * b.z + w2 * c.z);
         }
-        crossings.push_back(w0 * a.z + w1 * b.z + w2 * c.z);
-      }
-      if (ambiguous || crossings.size() % 2 == 1) {
+        for (const auto& c : crossings)
+          if (c.size() % 2 == 1) return false;
+        return true;
+      };
+      static constexpr double kOffsets[4][2] = {{0, 0}, {0.213, 0.131}, {-0.177, 0.229}, {0.151, -0.239}};  // of r
+      bool decided = false;
+      for (const auto& d : kOffsets)
+        if ((decided = cross_at({lo.x + (double(i) + 0.5 + d[0]) * r, lo.y + (double(j) + 0.5 + d[1]) * r}))) break;
+      if (!decided) {
         ++out.ambiguous_columns;
         continue;
       }
-      std::sort(crossings.begin(), crossings.end());
+      for (auto& c : crossings) std::sort(c.begin(), c.end());
       for (std::size_t k = 0; k < nz; ++k) {
         const std::size_t v = at(i, j, k);
         if (touched[v]) continue;
         const double z = lo.z + (double(k) + 0.5) * r;
-        const auto above = static_cast<std::size_t>(std::upper_bound(crossings.begin(), crossings.end(), z) - crossings.begin());
-        if (above % 2 == 1) solid[v] = 1, ++out.inside;
+        bool inside = false;
+        for (const auto& c : crossings)
+          inside = inside || (std::upper_bound(c.begin(), c.end(), z) - c.begin()) % 2 == 1;
+        if (inside) solid[v] = 1, ++out.inside;
       }
     }
 

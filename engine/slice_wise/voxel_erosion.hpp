@@ -10,13 +10,15 @@
 // difference simply flattens such relief; this is a conservative approximation of it.
 //
 // Construction, every step conservative (the result lies inside O ⊖ B(ε)):
-//  1. Inside voxels: a voxel (side r) no triangle touches (a separating-axis test, the box widened
-//     by 1e-9 m; floor triangles, on the object's lowest plane, do not count: they bound the
-//     lowest voxels from below only, where the ground is) lies wholly inside or wholly outside
-//     the closed mesh; it is inside when its
-//     centre is, by the parity of the crossings of the vertical line through the centre with the
-//     mesh's non-vertical triangles. A column whose line passes within 1e-9 of a triangle's edge,
-//     or crosses an odd number of times, is taken as wholly outside.
+//  1. Inside voxels: a voxel (side r) no boundary triangle touches (a separating-axis test, the
+//     box widened by 1e-9 m; floor triangles, on the object's lowest plane, do not count: they
+//     bound the lowest voxels from below only, where the ground is; nor do faces between two of
+//     the object's solids, solid_parts.hpp) lies wholly inside or wholly outside the union of the
+//     mesh's closed solids; it is inside when a point of it is inside one solid, by the parity of
+//     the crossings of a vertical line through the column with that solid's non-vertical
+//     triangles (the centre's line, else one of three others inside the column). A column where
+//     every such line passes within 1e-9 of a triangle's edge, or crosses a solid an odd number
+//     of times, is taken as wholly outside.
 //  2. Erosion: a voxel is kept when every voxel within ceil(ε / r) steps on each axis is inside
 //     (a cube of half-side >= ε contains the ball). Below the object's lowest point counts as
 //     solid: eyes stand on the ground, so nothing is seen from below it (the paper's Fig. 16
@@ -37,6 +39,9 @@ struct VoxelErosion {
   std::vector<Box3> boxes;
   std::size_t voxels = 0, inside = 0, kept = 0;
   std::size_t ambiguous_columns = 0;  // taken as outside
+  std::size_t solids = 0;              // closed solids the mesh is made of (solid_parts.hpp)
+  std::size_t interior_triangles = 0;  // faces between two of them: not the union's boundary
+  std::size_t partly_interior_triangles = 0;  // faces partly so: only the rest is boundary
 };
 
 // Throws std::invalid_argument unless ε and r are positive and finite, or when the grid would

@@ -1,0 +1,139 @@
+#include "engine/slice_wise/solid_parts.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <tuple>
+
+namespace cullcheck::slice_wise {
+namespace {
+
+constexpr double kPlaneTolerance = 1e-7;  // metres: a vertex this close to a plane lies in it
+constexpr double kLeftShare = 1e-12;      // of a triangle's area: less left uncovered counts as covered
+constexpr std::size_t kMaxPieces = 256;   // beyond this, a triangle is kept as boundary
+
+using Polygon = std::vector<Vec2>;
+
+double area2(const Polygon& p) {
+  double s = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) s += cross(p[i], p[(i + 1) % p.size()]);
+  return s;
+}
+
+// The part of convex `in` on the left of a -> b (keep_left) or on its right.
+Polygon half_plane(const Polygon& in, Vec2 a, Vec2 b, bool keep_left) {
+  Polygon out;
+  const Vec2 e = b - a;
+  auto side = [&](Vec2 q) { return keep_left ? cross(e, q - a) : -cross(e, q - a); };
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const Vec2 p = in[i], q = in[(i + 1) % in.size()];
+    const double sp = side(p), sq = side(q);
+    if (sp >= 0) out.push_back(p);
+    if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0)) out.push_back(p + (q - p) * (sp / (sp - sq)));
+  }
+  return out.size() >= 3 ? out : Polygon{};
+}
+
+// Convex `piece` minus the counter-clockwise triangle `t`, as convex pieces.
+void subtract(const Polygon& piece, const Vec2 t[3], std::vector<Polygon>& out) {
+  Polygon inside = piece;
+  for (int i = 0; i < 3 && !inside.empty(); ++i) {
+    Polygon outside = half_plane(inside, t[i], t[(i + 1) % 3], false);
+    if (!outside.empty() && area2(outside) > 0) out.push_back(std::move(outside));
+    inside = half_plane(inside, t[i], t[(i + 1) % 3], true);
+  }
+}
+
+// Plane key: the unit normal and offset, rounded (a pair rounding apart is only missed).
+using PlaneKey = std::tuple<long, long, long, long>;
+PlaneKey key_of(Vec3 n, double d) {
+  return {std::lround(n.x * 1e6), std::lround(n.y * 1e6), std::lround(n.z * 1e6), std::lround(d * 1e3)};
+}
+
+}  // namespace
+
+SolidParts solid_parts(const MeshObject& m) {
+  SolidParts out;
+  const std::size_t nt = m.triangles.size();
+  out.part_of.assign(nt, 0);
+  out.cover.assign(nt, SolidParts::boundary);
+  // Solids: triangles joined through shared vertices (a solid's own vertices are welded, two
+  // solids' are not).
+  std::vector<std::uint32_t> root(m.vertices.size());
+  std::iota(root.begin(), root.end(), 0u);
+  auto find = [&](std::uint32_t v) {
+    while (root[v] != v) v = root[v] = root[root[v]];
+    return v;
+  };
+  for (const auto& t : m.triangles)
+    for (int k = 1; k < 3; ++k) root[find(t[k])] = find(t[0]);
+  std::map<std::uint32_t, std::uint32_t> number;
+  for (std::size_t i = 0; i < nt; ++i) {
+    const auto [at, fresh] = number.emplace(find(m.triangles[i][0]), static_cast<std::uint32_t>(number.size()));
+    out.part_of[i] = at->second;
+  }
+  out.parts = static_cast<std::uint32_t>(number.size());
+  if (out.parts < 2) return out;
+
+  std::vector<Vec3> normal(nt);
+  std::vector<double> offset(nt);
+  std::map<PlaneKey, std::vector<std::uint32_t>> by_plane;
+  for (std::uint32_t i = 0; i < nt; ++i) {
+    const auto& t = m.triangles[i];
+    const Vec3 c = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
+    const double len = length(c);
+    if (!(len > 0)) continue;  // degenerate: no side to be inside on
+    normal[i] = c * (1.0 / len), offset[i] = dot(normal[i], m.vertices[t[0]]);
+    by_plane[key_of(normal[i], offset[i])].push_back(i);
+  }
+  for (std::uint32_t i = 0; i < nt; ++i) {
+    if (normal[i] == Vec3{}) continue;
+    const auto against = by_plane.find(key_of(normal[i] * -1.0, -offset[i]));
+    if (against == by_plane.end()) continue;
+    // Project on the plane's dominant axis, so that t is counter-clockwise.
+    const Vec3 n = normal[i];
+    const int drop = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0 : std::abs(n.y) >= std::abs(n.z) ? 1 : 2;
+    auto project = [&](Vec3 v) { return drop == 0 ? Vec2{v.y, v.z} : drop == 1 ? Vec2{v.z, v.x} : Vec2{v.x, v.y}; };
+    auto lift = [&](Vec2 q) {  // back onto the plane n . p = offset
+      const double d = offset[i];
+      if (drop == 0) return Vec3{(d - n.y * q.x - n.z * q.y) / n.x, q.x, q.y};
+      if (drop == 1) return Vec3{q.y, (d - n.z * q.x - n.x * q.y) / n.y, q.x};
+      return Vec3{q.x, q.y, (d - n.x * q.x - n.y * q.y) / n.z};
+    };
+    const auto& t = m.triangles[i];
+    Polygon own{project(m.vertices[t[0]]), project(m.vertices[t[1]]), project(m.vertices[t[2]])};
+    if (area2(own) < 0) std::swap(own[1], own[2]);
+    const double total = area2(own);
+    std::vector<Polygon> left{own}, next;
+    bool touched = false;
+    for (std::uint32_t j : against->second) {
+      if (out.part_of[j] == out.part_of[i]) continue;
+      const auto& u = m.triangles[j];
+      bool coplanar = true;
+      for (int k = 0; k < 3; ++k) coplanar = coplanar && std::abs(dot(n, m.vertices[u[k]]) - offset[i]) <= kPlaneTolerance;
+      if (!coplanar) continue;
+      Vec2 cover[3] = {project(m.vertices[u[0]]), project(m.vertices[u[1]]), project(m.vertices[u[2]])};
+      if (cross(cover[1] - cover[0], cover[2] - cover[0]) < 0) std::swap(cover[1], cover[2]);
+      next.clear();
+      touched = true;
+      for (const Polygon& piece : left) subtract(piece, cover, next);
+      left.swap(next);
+      if (left.empty() || left.size() > kMaxPieces) break;
+    }
+    if (!touched || left.size() > kMaxPieces) continue;
+    double remaining = 0;
+    for (const Polygon& piece : left) remaining += area2(piece);
+    if (remaining <= kLeftShare * total) {
+      out.cover[i] = SolidParts::interior, ++out.interior_count;
+    } else if (remaining < (1 - kLeftShare) * total) {
+      out.cover[i] = SolidParts::partly, ++out.partly_count;
+      auto& pieces = out.boundary_pieces[i];
+      for (const Polygon& piece : left) {
+        pieces.emplace_back();
+        for (Vec2 q : piece) pieces.back().push_back(lift(q));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace cullcheck::slice_wise
