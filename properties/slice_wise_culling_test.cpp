@@ -1,18 +1,22 @@
 // Slice-wise from-region culling (engine/slice_wise/cell_culling.hpp, Yılmaz & Güdükbay §4.2) is
 // conservative at slice granularity: every triangle the oracle witnesses from any eye of a view
 // cell (its corners, edge midpoints and a point inside) belongs to an object of the cell's PVS and
-// lies in a slice its three indices keep. Over seeded detailed cities, cells on the streets.
+// lies in a slice its three indices keep. Over seeded detailed cities, cells on the streets, and
+// over the real LoD2 district of The Hague, cells on a free-space walk.
 // The property must reach objects the indices cut (count them) and must fail for a straw man
 // whose occluders are not shrunk by the cell's ε.
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <memory>
 #include <map>
 #include <string>
 #include <sstream>
 
+#include "core/formats/footprint_formats.hpp"
 #include "engine/slice_wise/cell_culling.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/detailed_buildings.hpp"
@@ -41,39 +45,13 @@ std::vector<Vec3> cell_eyes(Vec3 centre, double side, double u, double v) {
   return eyes;
 }
 
-// One case: a seeded detailed city, a cell centred on a frame of a street walk, one of the three
-// configurations the report runs (as published; voxel-eroded occluders; with self-occlusion).
-// `shrink_epsilon_share` scales what the occluders are shrunk by (1: the cell's ε; less for the
-// straw man).
-void check_case(Counts& counts, double shrink_epsilon_share) {
-  const int configuration = *rc::gen::element(0, 1, 2);
-  const std::uint64_t seed = *rc::gen::inRange<std::uint64_t>(0, 1u << 20);
-  const int frame = *rc::gen::inRange(0, 120);
-  const double u = *rc::gen::inRange(0, 1001) / 1000.0, v = *rc::gen::inRange(0, 1001) / 1000.0;
-  generators::DetailedCityParams p;
-  p.layout.blocks_x = 2, p.layout.blocks_y = 2;
-  p.max_triangles = 3000;
-  const Scene scene = generators::detailed_city(p, seed);
-  generators::StreetWalkParams walk;
-  walk.frames = 121;
-  const CameraPath path = generators::street_walk(p.layout, walk, seed);
-  const double side = 2.0, epsilon = side / std::sqrt(2.0);
-  const Vec3 centre = path.frames[static_cast<std::size_t>(frame)].position;
-  std::ostringstream replay;
-  replay << "detailed city 2 x 2 blocks, max_triangles 3000, seed " << seed << "; cell side " << side << " at ("
-         << centre.x << ", " << centre.y << ", " << centre.z << ") = street walk frame " << frame << "; configuration "
-         << configuration;
-  RC_LOG() << replay.str() << "\n";
-
-  SliceSceneOptions so;
-  so.epsilon = epsilon * shrink_epsilon_share;
-  so.threads = 1;
-  so.shrinking = configuration == 0 ? Shrinking::minkowski_mesh : Shrinking::voxel_erosion;
-  const SliceWiseScene prepared(scene, so);
+// Culls the cell at `centre` and checks every triangle the oracle witnesses from its eyes.
+void check_cell(Counts& counts, const oracle::Oracle& truth, const SliceWiseScene& prepared,
+                bool self_occlusion, Vec3 centre, double side, double u, double v) {
   CellCullingOptions co;
-  co.self_occlusion = configuration == 2;
+  co.self_occlusion = self_occlusion;
   CellCuller culler(prepared, co);
-  ++counts.configurations[std::string(shrinking_name(so.shrinking)) + (co.self_occlusion ? "+self" : "")];
+  ++counts.configurations[std::string(shrinking_name(prepared.options().shrinking)) + (co.self_occlusion ? "+self" : "")];
   const CellPvs pvs = culler.cull(centre);
   // What the indices keep, per object id: nothing (absent), or the triangles kept.
   std::map<ObjectId, std::vector<char>> kept;
@@ -87,7 +65,6 @@ void check_case(Counts& counts, double shrink_epsilon_share) {
     counts.cut_objects += ov.choice.dropped > 0;
   }
 
-  const oracle::Oracle truth(scene);
   oracle::SamplingOptions sampling;
   sampling.spacing_m = 3.0;
   sampling.frustum_resolution = 128;
@@ -120,6 +97,77 @@ void check_case(Counts& counts, double shrink_epsilon_share) {
   ++counts.cases;
 }
 
+// One case: a seeded detailed city, a cell centred on a frame of a street walk, one of the three
+// configurations the report runs (as published; voxel-eroded occluders; with self-occlusion).
+// `shrink_epsilon_share` scales what the occluders are shrunk by (1: the cell's ε; less for the
+// straw man).
+void check_case(Counts& counts, double shrink_epsilon_share) {
+  const int configuration = *rc::gen::element(0, 1, 2);
+  const std::uint64_t seed = *rc::gen::inRange<std::uint64_t>(0, 1u << 20);
+  const int frame = *rc::gen::inRange(0, 120);
+  const double u = *rc::gen::inRange(0, 1001) / 1000.0, v = *rc::gen::inRange(0, 1001) / 1000.0;
+  generators::DetailedCityParams p;
+  p.layout.blocks_x = 2, p.layout.blocks_y = 2;
+  p.max_triangles = 3000;
+  const Scene scene = generators::detailed_city(p, seed);
+  generators::StreetWalkParams walk;
+  walk.frames = 121;
+  const CameraPath path = generators::street_walk(p.layout, walk, seed);
+  const double side = 2.0, epsilon = side / std::sqrt(2.0);
+  const Vec3 centre = path.frames[static_cast<std::size_t>(frame)].position;
+  std::ostringstream replay;
+  replay << "detailed city 2 x 2 blocks, max_triangles 3000, seed " << seed << "; cell side " << side << " at ("
+         << centre.x << ", " << centre.y << ", " << centre.z << ") = street walk frame " << frame << "; configuration "
+         << configuration;
+  RC_LOG() << replay.str() << "\n";
+
+  SliceSceneOptions so;
+  so.epsilon = epsilon * shrink_epsilon_share;
+  so.threads = 1;
+  so.shrinking = configuration == 0 ? Shrinking::minkowski_mesh : Shrinking::voxel_erosion;
+  const SliceWiseScene prepared(scene, so);
+  const oracle::Oracle truth(scene);
+  check_cell(counts, truth, prepared, configuration == 2, centre, side, u, v);
+}
+
+// The real LoD2 district (The Hague, each building with its parts one object), prepared once per
+// shrinking; cells centred on the frames of a free-space walk laid out on its footprints.
+struct Hague {
+  static constexpr const char* kFile = CULLCHECK_SHARED_DATA "/real/denhaag_lod2/DenHaag_01.city.json";
+  Scene scene;
+  CameraPath walk;
+  std::unique_ptr<oracle::Oracle> truth;
+  std::unique_ptr<SliceWiseScene> published, eroded;
+  Hague() {
+    formats::FootprintOptions fo;
+    fo.cityjson_buildings = true;
+    scene = formats::read_cityjson(kFile, fo);
+    const Scene footprints = formats::read_cityjson(kFile);
+    generators::StreetWalkParams w;
+    w.frames = 600;
+    walk = generators::free_space_walk(footprints, w, 1);
+    const Vec2 shift = footprints.origin - scene.origin;
+    for (Camera& c : walk.frames) c.position.x += shift.x, c.position.y += shift.y;
+    truth = std::make_unique<oracle::Oracle>(scene);
+    SliceSceneOptions so;
+    so.shrinking = Shrinking::minkowski_mesh;
+    published = std::make_unique<SliceWiseScene>(scene, so);
+    so.shrinking = Shrinking::voxel_erosion;
+    eroded = std::make_unique<SliceWiseScene>(scene, so);
+  }
+};
+
+void check_hague_case(const Hague& city, Counts& counts) {
+  const int configuration = *rc::gen::element(0, 1, 2);
+  const int frame = *rc::gen::inRange(0, static_cast<int>(city.walk.frames.size()));
+  const double u = *rc::gen::inRange(0, 1001) / 1000.0, v = *rc::gen::inRange(0, 1001) / 1000.0;
+  const Vec3 centre = city.walk.frames[static_cast<std::size_t>(frame)].position;
+  RC_LOG() << "The Hague LoD2 (DenHaag_01.city.json, buildings), free-space walk seed 1 of 600 frames, frame " << frame
+           << " as the centre of a 2 m cell; configuration " << configuration << "\n";
+  check_cell(counts, *city.truth, configuration == 0 ? *city.published : *city.eroded, configuration == 2,
+             centre, 2.0, u, v);
+}
+
 TEST(SliceWiseCulling, EveryWitnessedTriangleLiesInAKeptSlice) {
   Counts counts;
   const PropertyOutcome outcome = run_property("slice-wise-conservative", 15, true, [&] { check_case(counts, 1.0); });
@@ -131,6 +179,22 @@ TEST(SliceWiseCulling, EveryWitnessedTriangleLiesInAKeptSlice) {
   EXPECT_TRUE(outcome.held);
   EXPECT_EQ(counts.configurations.size(), 3u) << "every configuration reached";
   EXPECT_GT(counts.cut_objects, counts.cases) << "the property must reach objects whose slices are dropped";
+  EXPECT_GT(counts.witnessed_in_cut_objects, 100u);
+}
+
+TEST(SliceWiseCulling, EveryWitnessedTriangleOfTheRealLod2DistrictLiesInAKeptSlice) {
+  if (!std::filesystem::exists(Hague::kFile)) GTEST_FAIL() << "the real data is missing: " << Hague::kFile;
+  const Hague city;
+  Counts counts;
+  const PropertyOutcome outcome = run_property("slice-wise-conservative-lod2", 12, true, [&] { check_hague_case(city, counts); });
+  std::cerr << "The Hague: cases " << counts.cases << ", eyes " << counts.eyes << ", witnessed triangles "
+            << counts.witnessed_triangles << " (" << counts.witnessed_in_cut_objects << " in objects the indices cut), objects cut "
+            << counts.cut_objects << "; configurations:";
+  for (const auto& [name, n] : counts.configurations) std::cerr << " " << name << " " << n;
+  std::cerr << "\n";
+  EXPECT_TRUE(outcome.held);
+  EXPECT_EQ(counts.configurations.size(), 3u) << "every configuration reached";
+  EXPECT_GT(counts.cut_objects, counts.cases) << "the property must reach buildings whose slices are dropped";
   EXPECT_GT(counts.witnessed_in_cut_objects, 100u);
 }
 

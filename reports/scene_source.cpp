@@ -38,7 +38,8 @@ std::string SceneSource::replay_flags() const {
     if (footprints.storey_height != defaults.storey_height) flags += " --storey-height " + round_trip_text(footprints.storey_height);
     if (footprints.missing_height) flags += " --missing-height " + round_trip_text(*footprints.missing_height);
     if (!footprints.crs.empty()) flags += " --crs " + shell_quote(footprints.crs);
-    if (footprints.cityjson_meshes) flags += " --cityjson-meshes";
+    if (footprints.cityjson_buildings) flags += " --cityjson-buildings";
+    else if (footprints.cityjson_meshes) flags += " --cityjson-meshes";
     return flags;
   }
   std::string flags = "--generator " + generator + " --seed " + std::to_string(seed);

@@ -379,7 +379,7 @@ json slice_wise_table(const SliceTableOptions& o) {
   }
   if (!o.cityjson.empty()) {
     formats::FootprintOptions fo;
-    fo.cityjson_meshes = true;
+    fo.cityjson_buildings = true;  // a building and its parts one object, as the paper's buildings
     const Scene scene = formats::read_cityjson(o.cityjson, fo);
     // The walk is laid out on the footprints (free space is found between footprints), then moved
     // into the mesh scene's local frame.

@@ -53,6 +53,8 @@ void SceneFlags::add(CLI::App& app) {
                "CityJSON: keep each Building and BuildingPart as a mesh object (its highest-LoD surfaces, triangulated) "
                "instead of a footprint prism: the oracle, frustum culling and subjects see the LoD2 shapes, 2.5D methods are "
                "skipped");
+  app.add_flag("--cityjson-buildings", f.cityjson_buildings,
+               "CityJSON: as --cityjson-meshes, but a Building and its BuildingParts make one mesh object (the building's)");
 }
 
 void CoordinateFlags::add(CLI::App& app, const std::string& applies_to) {

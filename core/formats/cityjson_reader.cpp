@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -198,14 +199,32 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       double height;
     };
     std::vector<Footprint> footprints;
-    // With options.cityjson_meshes: each object's surfaces, triangulated, on its own vertices.
+    // With options.cityjson_meshes: each object's surfaces, triangulated, on its own vertices
+    // (with cityjson_buildings, each Building's with its parts', on each part's own vertices).
     struct Mesh {
       std::string object;
       std::vector<Vec3> vertices;
       std::vector<std::array<std::uint32_t, 3>> triangles;
     };
     std::vector<Mesh> meshes;
-    std::size_t made_of_parts = 0, terrain = 0, flat_surfaces = 0;
+    std::map<std::string, std::size_t> mesh_of;  // building id -> meshes index (cityjson_buildings)
+    const bool as_meshes = options.cityjson_meshes || options.cityjson_buildings;
+    const json& city_objects = doc["CityObjects"];
+    // The Building a part belongs to: its parents followed up (a missing parent or a cycle stops
+    // the walk at the last object found).
+    auto building_of = [&](const std::string& id) {
+      std::string at = id;
+      std::set<std::string> seen{id};
+      for (;;) {
+        const json& o = city_objects[at];
+        if (!o.is_object() || !o.contains("parents") || !o["parents"].is_array() || o["parents"].empty() || !o["parents"][0].is_string())
+          return at;
+        const std::string parent = o["parents"][0].get<std::string>();
+        if (!city_objects.contains(parent) || !seen.insert(parent).second) return at;
+        at = parent;
+      }
+    };
+    std::size_t made_of_parts = 0, terrain = 0, flat_surfaces = 0, parts_joined = 0;
     for (const auto& [id, object] : doc["CityObjects"].items()) {
       const std::string name = "CityObjects[\"" + id + "\"]";
       ++report.features;
@@ -233,9 +252,19 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
         continue;
       }
       const std::vector<Surface> surfaces = surfaces_of(*best, vertices.size(), where, name + ".geometry");
-      if (options.cityjson_meshes) {
-        Mesh m{id, {}, {}};
-        std::map<std::size_t, std::uint32_t> local;  // file vertex -> this mesh's
+      if (as_meshes) {
+        Mesh part{id, {}, {}};
+        Mesh* target = &part;
+        if (options.cityjson_buildings) {
+          const std::string building = building_of(id);
+          const auto [at, fresh] = mesh_of.emplace(building, meshes.size());
+          if (fresh) meshes.push_back({building, {}, {}});
+          else ++parts_joined;
+          target = &meshes[at->second];
+        }
+        Mesh& m = *target;
+        const std::size_t triangles_before = m.triangles.size();
+        std::map<std::size_t, std::uint32_t> local;  // file vertex -> this mesh's (this part's own)
         for (const Surface& surface : surfaces) {
           std::vector<Vec3> points;
           std::vector<std::vector<std::size_t>> rings;
@@ -258,12 +287,12 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
           for (std::size_t j = given; j < points.size(); ++j) index[j] = static_cast<std::uint32_t>(m.vertices.size()), m.vertices.push_back(points[j]);
           for (const auto& t : triangles) m.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
         }
-        if (m.triangles.empty()) {
+        if (m.triangles.size() == triangles_before) {
           ++report.skipped_invalid;
           note(report, name + ": no surface spans any area, skipped");
           continue;
         }
-        meshes.push_back(std::move(m));
+        if (target == &part) meshes.push_back(std::move(part));
         continue;
       }
       double z0 = HUGE_VAL, z1 = -HUGE_VAL;
@@ -311,10 +340,14 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
     }
     if (terrain > 0)
       note(report, std::to_string(terrain) + " TINRelief (terrain) left out: " +
-                       (options.cityjson_meshes ? "each mesh object is lowered to stand on z = 0"
+                       (as_meshes ? "each mesh object is lowered to stand on z = 0"
                                                 : "buildings stand on z = 0, heights above their own ground"));
     if (flat_surfaces > 0) note(report, std::to_string(flat_surfaces) + " surfaces span no area: left out of their meshes");
-    if (made_of_parts > 0) note(report, std::to_string(made_of_parts) + " Buildings made of BuildingParts: each part a building");
+    if (made_of_parts > 0 && !options.cityjson_buildings)
+      note(report, std::to_string(made_of_parts) + " Buildings made of BuildingParts: each part a building");
+    if (parts_joined > 0) note(report, std::to_string(parts_joined) + " BuildingParts joined to their Building's mesh");
+    // A building whose every part was skipped leaves an empty mesh.
+    std::erase_if(meshes, [](const Mesh& m) { return m.triangles.empty(); });
 
     // The CRS: a projected plan CRS is taken as it is (times its unit); longitude/latitude is
     // projected to local metres.

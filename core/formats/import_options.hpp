@@ -28,6 +28,10 @@ struct FootprintOptions {
   // CityJSON: keep each Building and BuildingPart as a mesh object (its surfaces of the highest
   // LoD, triangulated) instead of a footprint prism: what the oracle and mesh-aware methods see.
   bool cityjson_meshes = false;
+  // CityJSON, with cityjson_meshes (implied): a Building and its BuildingParts (and theirs) make
+  // one mesh object, named by the Building, each part's solid kept apart (no shared vertex), so
+  // the object is the building (what the slice-wise method slices and culls), not one solid of it.
+  bool cityjson_buildings = false;
 
   bool operator==(const FootprintOptions&) const = default;
 };

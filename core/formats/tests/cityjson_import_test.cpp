@@ -164,6 +164,35 @@ TEST(CityJsonImport, KeepsTheSurfacesAsMeshesWhenAsked) {
   EXPECT_DOUBLE_EQ(scene.meshes[1].bounds.lo.x - b1.bounds.lo.x, 10.0);
 }
 
+TEST(CityJsonImport, JoinsABuildingsPartsIntoOneMeshWhenAsked) {
+  // b2 is a part, b2-a, with a part b2-b on it, which has a part b2-b-1 on it; b1 stands alone.
+  const std::string objects =
+      R"("b1": {"type": "Building", "geometry": [)" + box_solid(0, true) + R"(]},
+         "b2": {"type": "Building", "children": ["b2-a", "b2-b"]},
+         "b2-a": {"type": "BuildingPart", "parents": ["b2"], "geometry": [)" + box_solid(1, false) + R"(]},
+         "b2-b": {"type": "BuildingPart", "parents": ["b2"], "children": ["b2-b-1"], "geometry": [)" + box_solid(2, false) + R"(]},
+         "b2-b-1": {"type": "BuildingPart", "parents": ["b2-b"], "geometry": [)" + box_solid(3, false) + R"(]})";
+  FootprintOptions options;
+  options.cityjson_buildings = true;
+  ImportReport report;
+  const Scene scene = cityjson_from_text(
+      city(objects, box_vertices(0, 0, 0, 4) + "," + box_vertices(10, 0, 1, 3) + "," + box_vertices(10, 0, 4, 2) + "," + box_vertices(10, 0, 6, 1)),
+      options, &report);
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(report.meshes_kept, 2u);
+  const MeshObject& b2 = scene.meshes[1];
+  EXPECT_EQ(b2.name, "b2") << "named by its Building";
+  EXPECT_EQ(b2.triangles.size(), 36u) << "three parts' solids";
+  EXPECT_EQ(b2.vertices.size(), 24u) << "each part on its own vertices";
+  EXPECT_TRUE(b2.closed);
+  // Lowered as one: b2-a from 0 to 3, b2-b from 3 to 5, b2-b-1 from 5 to 6.
+  EXPECT_DOUBLE_EQ(b2.bounds.lo.z, 0.0);
+  EXPECT_DOUBLE_EQ(b2.bounds.hi.z, 6.0);
+  bool noted = false;
+  for (const std::string& n : report.notes) noted = noted || n.find("2 BuildingParts joined") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST(CityJsonImport, TheHagueLod2DistrictAsMeshes) {
   const std::string path = std::string(CULLCHECK_SHARED_DATA) + "/real/denhaag_lod2/DenHaag_01.city.json";
   if (!std::filesystem::exists(path)) GTEST_FAIL() << "the real data is missing: " << path;
@@ -179,6 +208,14 @@ TEST(CityJsonImport, TheHagueLod2DistrictAsMeshes) {
   EXPECT_EQ(scene.triangle_count(), 35592u);
   EXPECT_EQ(closed, 1988u) << "all but two solids share every edge of their surfaces";
   EXPECT_NEAR(tallest, 25.071, 1e-6) << "as the prisms' tallest: each object stands on z = 0";
+
+  options.footprints.cityjson_buildings = true;
+  const Scene buildings = read_scene_file_any(path, options, &report);
+  EXPECT_EQ(buildings.meshes.size(), 844u) << "one mesh per Building, its parts joined";
+  EXPECT_EQ(buildings.triangle_count(), 35592u);
+  closed = 0;
+  for (const MeshObject& m : buildings.meshes) closed += m.closed ? 1 : 0;
+  EXPECT_EQ(closed, 843u) << "the two open solids are parts of one building";
 }
 
 }  // namespace
