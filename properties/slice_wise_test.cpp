@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <vector>
 
+#include "engine/slice_wise/cell_culling.hpp"
 #include "engine/slice_wise/slice_rectangle.hpp"
 #include "engine/slice_wise/slice_scene.hpp"
 #include "engine/slice_wise/slicing.hpp"
@@ -159,15 +161,21 @@ TEST(Algorithm3, TheBestFormKeepsEveryTriangleItMust) {
   }
 }
 
-TEST(VoxelErosion, APlainBlockShrinksByTheCubeOfVoxelsAndKeepsItsFoot) {
+// A 20 x 14 x 45 m block as a closed mesh.
+MeshObject plain_block() {
   Building b;
   b.id = 3;
   b.footprint = {{0, 0}, {20, 0}, {20, 14}, {0, 14}};
   b.height = 45;
   finish_building(b);
-  const MeshObject m = building_as_mesh(b);
+  return building_as_mesh(b);
+}
+
+TEST(VoxelErosion, APlainBlockShrinksByTheCubeOfVoxelsAndKeepsItsFoot) {
+  const MeshObject m = plain_block();
   ASSERT_TRUE(m.closed);
-  const VoxelErosion e = erode_closed_mesh(m, 1.4142135623730951, 0.5);
+  const double eps = 1.4142135623730951;
+  const VoxelErosion e = erode_closed_mesh(m, {eps, eps, eps}, 0.5);
   ASSERT_EQ(e.boxes.size(), 1u);
   // The wall voxels touch the walls; three more (1.5 m >= ε) eroded; the floor stays on the ground.
   EXPECT_EQ(e.boxes[0].lo, (Vec3{2, 2, 0}));
@@ -176,11 +184,22 @@ TEST(VoxelErosion, APlainBlockShrinksByTheCubeOfVoxelsAndKeepsItsFoot) {
   EXPECT_EQ(e.kept, 32u * 20u * 86u);
 }
 
+// A 2 m view cell at eye height moves the eye by at most 1 m along x and along y, and not at all
+// up or down: eroded by that square, the walls recede by two voxels and the roof stays.
+TEST(VoxelErosion, APlainBlockErodedByASquareCellKeepsItsRoof) {
+  const VoxelErosion e = erode_closed_mesh(plain_block(), {1, 1, 0}, 0.5);
+  ASSERT_EQ(e.boxes.size(), 1u);
+  EXPECT_EQ(e.boxes[0].lo, (Vec3{1.5, 1.5, 0}));
+  EXPECT_EQ(e.boxes[0].hi, (Vec3{18.5, 12.5, 44.5})) << "only the voxels touching the roof are lost";
+  EXPECT_EQ(e.kept, 34u * 22u * 89u);
+  EXPECT_THROW(erode_closed_mesh(plain_block(), {1, 1, -0.5}, 0.5), std::invalid_argument);
+}
+
 TEST(VoxelErosion, ADetailedBuildingsBoxesLieInsideItsBoxShrunkByEpsilon) {
   const MeshObject m = tower();
   ASSERT_TRUE(m.closed);
   const double eps = 1.4142135623730951;
-  const VoxelErosion e = erode_closed_mesh(m, eps, 0.5);
+  const VoxelErosion e = erode_closed_mesh(m, {eps, eps, eps}, 0.5);
   ASSERT_FALSE(e.boxes.empty());
   double volume = 0;
   for (const Box3& b : e.boxes) {
@@ -194,7 +213,7 @@ TEST(VoxelErosion, ADetailedBuildingsBoxesLieInsideItsBoxShrunkByEpsilon) {
   }
   EXPECT_GT(volume, 1000.0) << "the tower's core survives its window recesses";
   EXPECT_EQ(boxes_mesh(e.boxes).triangles.size(), 12 * e.boxes.size());
-  EXPECT_THROW(erode_closed_mesh(m, eps, 0.5, 1000), std::invalid_argument);
+  EXPECT_THROW(erode_closed_mesh(m, {eps, eps, eps}, 0.5, 1000), std::invalid_argument);
 }
 
 // A podium [0, 10]^2 x [0, 6] with a tower [2, 8]^2 x [6, 20] standing on it: two closed boxes
@@ -239,7 +258,7 @@ TEST(SolidParts, FindsTheFaceBetweenAPodiumAndItsTower) {
 TEST(VoxelErosion, ErodesThePodiumAndTowerAsOneSolid) {
   const MeshObject m = podium_and_tower();
   const double eps = 1.4142135623730951;
-  const VoxelErosion e = erode_closed_mesh(m, eps, 0.5);
+  const VoxelErosion e = erode_closed_mesh(m, {eps, eps, eps}, 0.5);
   EXPECT_EQ(e.solids, 2u);
   EXPECT_EQ(e.interior_triangles, 2u);
   EXPECT_EQ(e.partly_interior_triangles, 2u);
@@ -264,6 +283,59 @@ TEST(VoxelErosion, ErodesThePodiumAndTowerAsOneSolid) {
           if (length(p - Vec3{std::clamp(x, b.lo.x, b.hi.x), std::clamp(y, b.lo.y, b.hi.y), std::clamp(z, b.lo.z, b.hi.z)}) > eps) continue;
           ASSERT_TRUE(in_union(p)) << x << " " << y << " " << z;
         }
+}
+
+TEST(VoxelErosion, APodiumAndTowerErodedByASquareCellStayInsideWhenGrownByIt) {
+  const VoxelErosion e = erode_closed_mesh(podium_and_tower(), {1, 1, 0}, 0.5);
+  EXPECT_TRUE(in_some_box(e.boxes, {5, 5, 19.4})) << "the tower's top stays (less the voxels touching it)";
+  EXPECT_FALSE(in_some_box(e.boxes, {3.4, 5, 10})) << "the tower's wall recedes by the voxel touching it and 1 m";
+  EXPECT_TRUE(in_some_box(e.boxes, {3.6, 5, 10}));
+  EXPECT_TRUE(in_some_box(e.boxes, {1.6, 5, 5.4})) << "the podium's rim under its roof";
+  for (const Box3& b : e.boxes)
+    for (double x = b.lo.x - 1; x <= b.hi.x + 1 + 1e-9; x += 0.25)
+      for (double y = b.lo.y - 1; y <= b.hi.y + 1 + 1e-9; y += 0.25)
+        for (double z = b.lo.z; z <= b.hi.z + 1e-9; z += 0.25) {
+          const bool podium = x >= 0 && x <= 10 && y >= 0 && y <= 10 && z <= 6;
+          const bool tower = x >= 2 && x <= 8 && y >= 2 && y <= 8 && z >= 6 && z <= 20;
+          ASSERT_TRUE(podium || tower) << x << " " << y << " " << z;
+        }
+}
+
+// The tower alone, seen from a 2 m cell in front of its south facade (y = 0): nothing else hides
+// any of it, so only the object itself can.
+ObjectVisibility tower_alone_from(Vec3 centre, bool self_occlusion, bool turned_away_faces) {
+  static const Scene scene = [] {
+    Scene s;
+    s.meshes.push_back(tower());
+    return s;
+  }();
+  SliceSceneOptions so;
+  so.shrinking = Shrinking::voxel_erosion;
+  static const SliceWiseScene prepared(scene, so);
+  CellCullingOptions co;
+  co.self_occlusion = self_occlusion;
+  co.turned_away_faces = turned_away_faces;
+  CellCuller culler(prepared, co);
+  const CellPvs pvs = culler.cull(centre);
+  EXPECT_EQ(pvs.visible.size(), 1u);
+  return pvs.visible.empty() ? ObjectVisibility{} : pvs.visible[0];
+}
+
+// 6 m from the facade the tower's box spans more than 80 degrees up: no zoomed view holds it, and
+// the six cube faces take its queries. Its walls on the sides and at the back, its roof and floor
+// turn away from the whole cell, so its far slices (along y, into the depth) hide behind it.
+TEST(CellCulling, ANearTowersFacesTurnedAwayFromTheCellHideItsFarSlices) {
+  const Vec3 centre{10, -6, 1.7};
+  const ObjectVisibility published = tower_alone_from(centre, false, false);
+  const ObjectVisibility eroded_self = tower_alone_from(centre, true, false);
+  const ObjectVisibility faces = tower_alone_from(centre, true, true);
+  EXPECT_TRUE(faces.zoom_refused);
+  EXPECT_EQ(published.choice.dropped, 0u) << "nothing but the tower itself could hide part of it";
+  EXPECT_EQ(eroded_self.choice.dropped, 180u) << "its eroded solid alone: the far slices reach round to the side walls";
+  EXPECT_EQ(faces.choice.dropped, 588u) << "of " << tower().triangles.size();
+  EXPECT_EQ(faces.indices.work_axis, 1);
+  EXPECT_EQ(faces.indices.y, 2) << "y slices 0 to 2 of 5 visible";
+  EXPECT_EQ(faces.choice.form, VisibleForm::vertical);
 }
 
 TEST(Slicing, RefusesMoreSlicesThanAByteHolds) {

@@ -91,6 +91,9 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
   const Shrinking shrinking = run.shrinking;
   row["shrinking"] = shrinking_name(shrinking);
   row["self_occlusion"] = run.self_occlusion;
+  // What the occluders are shrunk by: the cell's square (voxel erosion) or the ball of radius ε.
+  if (shrinking == Shrinking::voxel_erosion) row["eroded_by"] = "cell square (s/2 on x and y, 0 on z)";
+  else row["eroded_by"] = "ball of radius s/sqrt(2) (vertex shrinking)";
   CellCullingOptions culling = o.culling;
   culling.self_occlusion = run.self_occlusion;
   const double side = o.cell_side, epsilon = side / std::sqrt(2.0);

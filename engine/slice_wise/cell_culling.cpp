@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <queue>
 #include <stdexcept>
 
@@ -49,6 +50,53 @@ void front_to_back(const ObjectTree& tree, const std::vector<SliceWiseObject>& o
   }
 }
 
+// Per triangle of `m`: whether it may be turned to some eye of the cell (the square of half-side h
+// around `centre` at its height). A face of an outward-wound closed solid turned away from an
+// eye outside it is hidden from that eye by the solid: the ray is inside the solid just before
+// it, so it crossed the solid's boundary earlier. Eyes in the face's plane (1e-6 m) count as
+// turned to it, and so does a degenerate face.
+std::vector<char> faces_turned_to_cell(const MeshObject& m, Vec3 centre, double h) {
+  std::vector<char> out(m.triangles.size(), 1);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const Vec3 a = m.vertices[m.triangles[t][0]], b = m.vertices[m.triangles[t][1]], c = m.vertices[m.triangles[t][2]];
+    const Vec3 n = cross(b - a, c - a);
+    const double len = length(n);
+    if (!(len > 0)) continue;
+    double most = -HUGE_VAL;
+    for (double dx : {-h, h})
+      for (double dy : {-h, h}) most = std::max(most, dot(n, Vec3{centre.x + dx, centre.y + dy, centre.z} - a) / len);
+    out[t] = most > -1e-6;
+  }
+  return out;
+}
+
+// What a query must find hidden for slice i of axis a to be hidden: its slab box, or, when the
+// faces turned away from the cell are left out (`facing` not empty), the boxes of the others cut
+// to the slab, grouped by the slice of the next horizontal axis (both, for a horizontal slice)
+// where each begins, so that the faces at opposite walls do not share one box. None: hidden.
+std::vector<Box3> slice_parts(const SliceWiseObject& o, const MeshObject& m, std::size_t a, std::size_t i,
+                              const std::vector<char>& facing) {
+  const Box3& slab = o.slice_boxes[a][i];
+  if (facing.empty()) return {slab};
+  std::map<int, Box3> groups;
+  const AxisSlices& s = o.slices.axes[a];
+  for (std::uint32_t k = s.begin[i]; k < s.begin[i + 1]; ++k) {
+    const std::uint32_t t = s.triangles[k];
+    if (!facing[t]) continue;
+    const auto& r = o.ranges[t];
+    const int key = a == 0 ? r[2] : a == 1 ? r[0] : r[0] * 256 + r[2];
+    Box3& g = groups[key];
+    for (std::uint32_t v : m.triangles[t]) g.extend(m.vertices[v]);
+  }
+  std::vector<Box3> out;
+  for (auto& [key, g] : groups) {
+    g.lo = {std::max(g.lo.x, slab.lo.x), std::max(g.lo.y, slab.lo.y), std::max(g.lo.z, slab.lo.z)};
+    g.hi = {std::min(g.hi.x, slab.hi.x), std::min(g.hi.y, slab.hi.y), std::min(g.hi.z, slab.hi.z)};
+    out.push_back(g);
+  }
+  return out;
+}
+
 }  // namespace
 
 void validate(const CellCullingOptions& o) {
@@ -64,13 +112,15 @@ CellCuller::CellCuller(const SliceWiseScene& scene, const CellCullingOptions& op
   validate(options);
 }
 
-bool CellCuller::cube_hidden(const Box3& box) {
+bool CellCuller::cube_hidden(const Box3& box) { return hidden_in_cube(cube_, box); }
+
+bool CellCuller::hidden_in_cube(std::array<OcclusionBuffer, 6>& faces, const Box3& box) const {
   // Points within `near` of the eye on every axis lie in no face's image: such a box stays.
   const double r = options_.near * 1.001;
   if (box.lo.x <= eye_.x + r && box.hi.x >= eye_.x - r && box.lo.y <= eye_.y + r && box.hi.y >= eye_.y - r &&
       box.lo.z <= eye_.z + r && box.hi.z >= eye_.z - r)
     return false;
-  for (OcclusionBuffer& face : cube_)
+  for (OcclusionBuffer& face : faces)
     if (face.test_box(box).visible) return false;
   return true;
 }
@@ -83,14 +133,14 @@ void CellCuller::draw_cube(const TriangleMesh& occluder, const Box3& box) {
   }
 }
 
-void CellCuller::draw_zoomed(std::uint32_t candidate, double farthest, CellStatistics& stats) {
+void CellCuller::draw_zoomed(OcclusionBuffer& view, std::uint32_t candidate, double farthest, CellStatistics& stats) {
   const auto& objects = scene_.objects();
   // Whether something in `box` may stand in front of part of the candidate in this view.
   auto may_occlude = [&](const Box3& box) {
     if (empty(box)) return false;
-    const BoxVisibility where = zoom_.locate_box(box);
+    const BoxVisibility where = view.locate_box(box);
     if (!where.in_image || where.nearest >= farthest) return false;
-    return zoom_.test_box(box).visible;
+    return view.test_box(box).visible;
   };
   front_to_back(
       scene_.tree(), objects, eye_, [&](const ObjectTree::Node& node) { return may_occlude(node.box); },
@@ -101,14 +151,17 @@ void CellCuller::draw_zoomed(std::uint32_t candidate, double farthest, CellStati
         ++stats.occluders_drawn;
         stats.triangles_drawn += obj.occluder.triangles.size();
         for (const auto& t : obj.occluder.triangles)
-          zoom_.draw_triangle(obj.occluder.vertices[t[0]], obj.occluder.vertices[t[1]], obj.occluder.vertices[t[2]]);
+          view.draw_triangle(obj.occluder.vertices[t[0]], obj.occluder.vertices[t[1]], obj.occluder.vertices[t[2]]);
       });
 }
 
 bool CellCuller::zoom_hidden(const Box3& box, CellStatistics& stats) {
   ++stats.queries;
-  const BoxVisibility r = zoom_.test_box(box);
-  return !r.visible && !r.crosses_near && !r.beyond_image;
+  if (zoom_views_ == 1) {
+    const BoxVisibility r = zoom_[0].test_box(box);
+    return !r.visible && !r.crosses_near && !r.beyond_image;
+  }
+  return hidden_in_cube(zoom_, box);
 }
 
 CellPvs CellCuller::cull(Vec3 centre) {
@@ -150,26 +203,44 @@ CellPvs CellCuller::cull(Vec3 centre) {
     v.object = c;
     v.indices = all_visible(obj.slices);
     const auto view = zoomed_view(centre, obj.box, options_.zoom_resolution, options_.near);
-    if (!view) {
-      v.zoom_refused = true;
+    if (view) {
+      zoom_[0].reset(*view);
+      zoom_views_ = 1;
     } else {
-      zoom_.reset(*view);
-      const double farthest = zoom_.locate_box(obj.box).farthest;
-      draw_zoomed(c, farthest, stats);
+      v.zoom_refused = true;
+      const auto faces = cube_views(centre, options_.zoom_resolution, options_.near);
+      for (std::size_t k = 0; k < 6; ++k) zoom_[k].reset(faces[k]);
+      zoom_views_ = 6;
+    }
+    {
+      for (int k = 0; k < zoom_views_; ++k) {
+        const BoxVisibility where = zoom_[static_cast<std::size_t>(k)].locate_box(obj.box);
+        if (where.in_image) draw_zoomed(zoom_[static_cast<std::size_t>(k)], c, where.farthest, stats);
+      }
       if (zoom_hidden(obj.box, stats)) continue;
       if (options_.slices) {
         SliceOcclusion occ;
         const double height = obj.box.hi.z - obj.box.lo.z;
         const int steps = height > 0 ? static_cast<int>(std::ceil(height / options_.delta)) : 0;
+        // With self-occlusion, an outward-wound closed object's faces turned away from the whole
+        // cell hide behind the object itself (faces_turned_to_cell) when the cell lies outside it.
+        const double h = scene_.options().epsilon / std::sqrt(2.0);
+        const bool cell_outside = centre.z < obj.box.lo.z || centre.z > obj.box.hi.z || centre.x + h < obj.box.lo.x ||
+                                  centre.x - h > obj.box.hi.x || centre.y + h < obj.box.lo.y || centre.y - h > obj.box.hi.y;
+        const MeshObject* mesh = obj.is_mesh ? &scene_.scene().meshes[obj.scene_index] : nullptr;
+        std::vector<char> facing;
+        if (options_.self_occlusion && options_.turned_away_faces && mesh && obj.outward_solids && cell_outside) facing = faces_turned_to_cell(*mesh, centre, h);
         for (std::size_t a = 0; a < 2; ++a) {
           const AxisSlices& s = obj.slices.axes[a];
           for (std::size_t i = 0; i < s.count(); ++i) {
-            const Box3& slab = obj.slice_boxes[a][i];
+            const std::vector<Box3> parts = mesh ? slice_parts(obj, *mesh, a, i, facing) : std::vector<Box3>{obj.slice_boxes[a][i]};
             auto hidden_to = [&](int k) {
-              Box3 b = slab;
-              if (k < steps) b.hi.z = std::min(b.hi.z, obj.box.lo.z + k * options_.delta);
-              if (b.hi.z < b.lo.z) return true;  // nothing of the slice that low
-              return zoom_hidden(b, stats);
+              for (Box3 b : parts) {
+                if (k < steps) b.hi.z = std::min(b.hi.z, obj.box.lo.z + k * options_.delta);
+                if (b.hi.z < b.lo.z) continue;  // nothing of this part that low
+                if (!zoom_hidden(b, stats)) return false;
+              }
+              return true;
             };
             int lo_k = 0, hi_k = steps;  // largest k whose box is hidden (0: none)
             while (lo_k < hi_k) {
@@ -181,7 +252,8 @@ CellPvs CellCuller::cull(Vec3 centre) {
           }
         }
         for (std::size_t j = 0; j < obj.slices.axes[2].count(); ++j) {
-          occ.z_hidden.push_back(zoom_hidden(obj.slice_boxes[2][j], stats) ? 1 : 0);
+          const std::vector<Box3> parts = mesh ? slice_parts(obj, *mesh, 2, j, facing) : std::vector<Box3>{obj.slice_boxes[2][j]};
+          occ.z_hidden.push_back(std::all_of(parts.begin(), parts.end(), [&](const Box3& b) { return zoom_hidden(b, stats); }) ? 1 : 0);
         }
         v.choice = choose_slices(obj, occ);
         v.indices = v.choice.indices;

@@ -12,7 +12,9 @@
 // is hidden in every face skipped whole; each object of a visible block tested by its box, and if
 // visible, its shrunk occluder drawn (so later, farther blocks meet the occluders in front of
 // them: occluders that are themselves hidden are never drawn, which changes nothing).
-// Then each candidate on its own: a view zoomed on its box (the paper's zoomed query), every
+// Then each candidate on its own: a view zoomed on its box (the paper's zoomed query; when the box
+// is too near or spans too wide an angle to zoom on, six cube faces at the zoomed resolution,
+// hidden only where hidden in each), every
 // other object's shrunk occluder in that view drawn front to back (again skipping hidden ones and
 // those wholly behind the candidate), the box tested, and if visible, Algorithm 2: each vertical
 // slice's hidden height (boxes of height Δ, 2Δ, ... from the bottom; found by bisection, since a
@@ -46,13 +48,19 @@ struct CellCullingOptions {
   // hides its far side just as validly (Theorem 1 holds for any occluder that does not contain
   // the target point, and a surface point is never inside its own shrunk solid).
   bool self_occlusion = false;
+  // With self_occlusion, the faces of a closed, outward-wound object turned away from every eye of
+  // the cell are left out of its slices' queries when the cell lies outside the object's box: the
+  // object itself hides them from every eye (exactly, not through its shrunk solid), and the
+  // faces left are grouped by where they stand, so that the far slices' boxes do not reach round
+  // to the walls facing the cell.
+  bool turned_away_faces = true;
 };
 
 struct ObjectVisibility {
   std::uint32_t object = 0;   // index into SliceWiseScene::objects()
   VisibilityIndices indices;  // what the cell stores (3 bytes, Fig. 5)
   SliceChoice choice;
-  bool zoom_refused = false;  // too close or too wide to zoom on: kept whole
+  bool zoom_refused = false;  // too close or too wide to zoom on: tested in six cube faces instead
 };
 
 // The cost of one cell (what it decided is CellPvs::visible and each one's SliceChoice).
@@ -82,15 +90,18 @@ class CellCuller {
 
  private:
   bool cube_hidden(const Box3& box);
+  // Hidden in every face of a cube map at the eye (every direction is in some face's image).
+  bool hidden_in_cube(std::array<OcclusionBuffer, 6>& faces, const Box3& box) const;
   void draw_cube(const TriangleMesh& occluder, const Box3& box);
-  void draw_zoomed(std::uint32_t candidate, double farthest, CellStatistics& stats);
+  void draw_zoomed(OcclusionBuffer& view, std::uint32_t candidate, double farthest, CellStatistics& stats);
   bool zoom_hidden(const Box3& box, CellStatistics& stats);
 
   const SliceWiseScene& scene_;
   CellCullingOptions options_;
   Vec3 eye_;
   std::array<OcclusionBuffer, 6> cube_;
-  OcclusionBuffer zoom_;
+  std::array<OcclusionBuffer, 6> zoom_;  // one zoomed view, or six cube faces when zooming is refused
+  int zoom_views_ = 1;
 };
 
 }  // namespace cullcheck::slice_wise

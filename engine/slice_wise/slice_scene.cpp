@@ -152,9 +152,12 @@ SliceWiseScene::SliceWiseScene(const Scene& scene, const SliceSceneOptions& opti
       slice_time[i] = seconds_since(t);
       t = Clock::now();
       if (options.shrinking == Shrinking::voxel_erosion && m.closed) {
-        const VoxelErosion eroded = erode_closed_mesh(m, options.epsilon, options.voxel_m);
+        const double e = options.epsilon, s = e / std::sqrt(2.0);
+        const Vec3 element = options.erosion_element == SliceSceneOptions::Element::square ? Vec3{s, s, 0} : Vec3{e, e, e};
+        const VoxelErosion eroded = erode_closed_mesh(m, element, options.voxel_m);
         o.occluder = boxes_mesh(eroded.boxes);
         o.occluder_boxes = eroded.boxes.size();
+        o.outward_solids = eroded.outward;
         o.shrunk_by = Shrinking::voxel_erosion;
       } else {
         TriangleMesh plain;

@@ -2,7 +2,7 @@
 // Fig. 8, the preprocessing boxes): each object sliced (slicing.hpp), each object's shrunk
 // occluder, and a quadtree over the objects' ground boxes for the coarse culling.
 //
-// Two ways to shrink (both conservative: the occluder lies inside the object eroded by ε):
+// Two ways to shrink (both conservative: the occluder lies inside the object eroded by the cell):
 //  - minkowski_mesh, as published (engine/shrinking/minkowski_mesh.hpp): vertices moved by
 //    δ = ε / sin(α/2), colliding faces dropped;
 //  - voxel_erosion, the corrected variant (voxel_erosion.hpp): the closed solid eroded on a voxel
@@ -45,6 +45,9 @@ struct SliceWiseObject {
   MeshShrinkStatistics shrink;  // minkowski_mesh
   Shrinking shrunk_by = Shrinking::minkowski_mesh;
   std::size_t occluder_boxes = 0;  // voxel_erosion
+  // Closed, every solid wound outward (checked by voxel_erosion): a face turned away from an eye
+  // outside the object is hidden from it by the object itself.
+  bool outward_solids = false;
   double shrink_seconds = 0.0;
   std::size_t triangles() const { return slices.triangle_count; }
 };
@@ -66,6 +69,13 @@ struct SliceSceneOptions {
   double epsilon = 1.4142135623730951;  // the view cell's largest distance from its centre
   Shrinking shrinking = Shrinking::minkowski_mesh;
   double voxel_m = 0.5;                 // voxel_erosion's grid
+  // What voxel_erosion erodes by. `square`: the view cell itself, the axis-aligned square of
+  // half-side ε/√2 at eye height (eyes move on a plane, so walls recede by s/2, roofs not at all:
+  // the Minkowski difference O ⊖ cell on which Theorem 1's proof rests). `ball`: the ball of
+  // radius ε (a cube of half-side ε on the grid), for eyes that also move up and down; the
+  // published minkowski_mesh always shrinks by the ball.
+  enum class Element { square, ball };
+  Element erosion_element = Element::square;
   SlicingOptions slicing;
   unsigned threads = 0;  // for shrinking and slicing (0: every core); the result does not depend on it
 };

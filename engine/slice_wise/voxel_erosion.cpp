@@ -39,8 +39,9 @@ double orient(Vec2 a, Vec2 b, Vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y 
 
 }  // namespace
 
-VoxelErosion erode_closed_mesh(const MeshObject& m, double epsilon, double r, std::size_t max_voxels) {
-  if (!(epsilon > 0) || !std::isfinite(epsilon)) throw std::invalid_argument("voxel erosion: epsilon must be positive and finite");
+VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_t max_voxels) {
+  for (double a : {h.x, h.y, h.z})
+    if (!(a >= 0) || !std::isfinite(a)) throw std::invalid_argument("voxel erosion: the element's half-sides must be finite and not negative");
   if (!(r > 0) || !std::isfinite(r)) throw std::invalid_argument("voxel erosion: voxel size must be positive and finite");
   VoxelErosion out;
   if (m.triangles.empty()) return out;
@@ -62,6 +63,15 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, double epsilon, double r, st
   // object are inside it).
   const SolidParts parts = solid_parts(m);
   out.solids = parts.parts, out.interior_triangles = parts.interior_count, out.partly_interior_triangles = parts.partly_count;
+  {
+    std::vector<double> volume(parts.parts, 0.0);  // six times each solid's signed volume
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const auto& tri = m.triangles[t];
+      const Vec3 a = m.vertices[tri[0]] - lo, b = m.vertices[tri[1]] - lo, c = m.vertices[tri[2]] - lo;
+      volume[parts.part_of[t]] += dot(a, cross(b, c));
+    }
+    out.outward = m.closed && std::all_of(volume.begin(), volume.end(), [](double v) { return v > 0; });
+  }
   std::vector<std::uint8_t> touched(out.voxels, 0);
   const Vec3 half{r / 2 + kWiden, r / 2 + kWiden, r / 2 + kWiden};
   // Marks the voxels convex polygon `poly` (n points) touches.
@@ -151,11 +161,12 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, double epsilon, double r, st
       }
     }
 
-  // 2. Erosion by a cube of half-side e voxels, one axis at a time (outside the grid: empty, below
-  // it: ground, solid).
-  const long e = static_cast<long>(std::ceil(epsilon / r));
+  // 2. Erosion by the box of half-sides ceil(h / r) voxels, one axis at a time (outside the grid:
+  // empty, below it: ground, solid).
   std::vector<std::uint8_t> next(out.voxels, 0);
-  auto erode_axis = [&](std::size_t n, std::size_t stride_count, auto&& index, bool ground_below) {
+  auto erode_axis = [&](double half_side, std::size_t n, std::size_t stride_count, auto&& index, bool ground_below) {
+    const long e = static_cast<long>(std::ceil(half_side / r));
+    if (e == 0) return;
     std::vector<int> prefix(n + 1);
     for (std::size_t s = 0; s < stride_count; ++s) {
       prefix[0] = 0;
@@ -172,9 +183,9 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, double epsilon, double r, st
     }
     solid.swap(next);
   };
-  erode_axis(nx, ny * nz, [&](std::size_t s, std::size_t q) { return s * nx + q; }, false);
-  erode_axis(ny, nx * nz, [&](std::size_t s, std::size_t q) { return at(s % nx, q, s / nx); }, false);
-  erode_axis(nz, nx * ny, [&](std::size_t s, std::size_t q) { return at(s % nx, s / nx, q); }, true);
+  erode_axis(h.x, nx, ny * nz, [&](std::size_t s, std::size_t q) { return s * nx + q; }, false);
+  erode_axis(h.y, ny, nx * nz, [&](std::size_t s, std::size_t q) { return at(s % nx, q, s / nx); }, false);
+  erode_axis(h.z, nz, nx * ny, [&](std::size_t s, std::size_t q) { return at(s % nx, s / nx, q); }, true);
 
   // 3. Boxes.
   std::vector<std::uint8_t> used(out.voxels, 0);

@@ -1,4 +1,4 @@
-// A shrunk occluder that survives facade relief: the object's solid eroded by ε on a voxel grid
+// A shrunk occluder that survives facade relief: the object's solid eroded by the view cell on a voxel grid
 // (erosion by a structuring element, the generalisation of occluder shrinking the slice-wise paper
 // cites as Décoret et al. [16]), kept as a few boxes.
 //
@@ -9,7 +9,7 @@
 // every face (99% of the detailed city's): the occluders become sieves. The exact Minkowski
 // difference simply flattens such relief; this is a conservative approximation of it.
 //
-// Construction, every step conservative (the result lies inside O ⊖ B(ε)):
+// Construction, every step conservative (the result lies inside O ⊖ H, H the element box):
 //  1. Inside voxels: a voxel (side r) no boundary triangle touches (a separating-axis test, the
 //     box widened by 1e-9 m; floor triangles, on the object's lowest plane, do not count: they
 //     bound the lowest voxels from below only, where the ground is; nor do faces between two of
@@ -19,10 +19,10 @@
 //     triangles (the centre's line, else one of three others inside the column). A column where
 //     every such line passes within 1e-9 of a triangle's edge, or crosses a solid an odd number
 //     of times, is taken as wholly outside.
-//  2. Erosion: a voxel is kept when every voxel within ceil(ε / r) steps on each axis is inside
-//     (a cube of half-side >= ε contains the ball). Below the object's lowest point counts as
-//     solid: eyes stand on the ground, so nothing is seen from below it (the paper's Fig. 16
-//     leaves ground vertices at the ground for the same reason).
+//  2. Erosion by a box of half-sides h (the structuring element; see erode_closed_mesh): a voxel
+//     is kept when every voxel within ceil(h / r) steps on each axis is inside. Below the
+//     object's lowest point counts as solid: eyes stand on the ground, so nothing is seen from
+//     below it (the paper's Fig. 16 leaves ground vertices at the ground for the same reason).
 //  3. Boxes: the kept voxels merged greedily (runs along x, widened along y, then raised along z).
 // Only for closed meshes (MeshObject::closed): parity means nothing on an open surface.
 #pragma once
@@ -42,11 +42,14 @@ struct VoxelErosion {
   std::size_t solids = 0;              // closed solids the mesh is made of (solid_parts.hpp)
   std::size_t interior_triangles = 0;  // faces between two of them: not the union's boundary
   std::size_t partly_interior_triangles = 0;  // faces partly so: only the rest is boundary
+  bool outward = false;  // every solid wound outward (positive signed volume)
 };
 
-// Throws std::invalid_argument unless ε and r are positive and finite, or when the grid would
-// exceed `max_voxels`.
-VoxelErosion erode_closed_mesh(const MeshObject& mesh, double epsilon, double voxel_m, std::size_t max_voxels = 50'000'000);
+// Erodes by the box [-h.x, h.x] x [-h.y, h.y] x [-h.z, h.z] (a cube of half-side ε holds the
+// ball of radius ε; a square view cell of half-side s/2 at eye height is the box (s/2, s/2, 0)).
+// Throws std::invalid_argument unless r is positive and finite and h's sides finite and not
+// negative, or when the grid would exceed `max_voxels`.
+VoxelErosion erode_closed_mesh(const MeshObject& mesh, Vec3 h, double voxel_m, std::size_t max_voxels = 50'000'000);
 
 // The boxes as one triangle mesh (12 triangles a box, outward).
 TriangleMesh boxes_mesh(const std::vector<Box3>& boxes);
