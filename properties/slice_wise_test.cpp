@@ -158,7 +158,31 @@ TEST(Algorithm3, TheBestFormKeepsEveryTriangleItMust) {
     }
     EXPECT_EQ(c.dropped, m.triangles.size() - drawn.size());
     EXPECT_GT(c.dropped, 0u) << "seed " << seed;
+    EXPECT_GE(c.cell_dropped, c.dropped) << "seed " << seed;
   }
+}
+
+// The premise measure on known shapes: with every triangle reaching past x = 6 kept, the rest is
+// the slices at the low-x end, one form; with only the two ends kept (x < 3 and x > 17), the
+// middle is droppable per cell but no rectangle from a side reaches it.
+TEST(Algorithm3, TheBestFormSaysWhenTheKeptTrianglesFitOneForm) {
+  const MeshObject m = tower();
+  const SliceWiseObject o = prepared_object(m);
+  auto keep_where = [&](auto&& inside) {
+    std::vector<char> keep(m.triangles.size(), 0);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      Box3 b;
+      for (std::uint32_t v : m.triangles[t]) b.extend(m.vertices[v]);
+      keep[t] = inside(b);
+    }
+    return best_form_keeping(o, keep);
+  };
+  const SliceChoice one = keep_where([](const Box3& b) { return b.hi.x > 6; });
+  EXPECT_EQ(one.dropped, 588u);
+  EXPECT_EQ(one.cell_dropped, 588u) << "a vertical form: the x < 6 slices";
+  const SliceChoice two = keep_where([](const Box3& b) { return b.hi.x < 3 || b.lo.x > 17; });
+  EXPECT_EQ(two.dropped, 78u);
+  EXPECT_EQ(two.cell_dropped, 378u) << "the middle is droppable per cell, not by one form";
 }
 
 // A 20 x 14 x 45 m block as a closed mesh.

@@ -139,7 +139,26 @@ SliceChoice best_form_keeping(const SliceWiseObject& object, const std::vector<c
       }
     }
   }
-  best.cell_dropped = best.dropped;
+  // What a per-cell record could drop: on the better vertical axis, the triangles none of whose
+  // (vertical slice, horizontal slice) cells holds a kept triangle.
+  for (int a = 0; a < 2; ++a) {
+    const std::size_t n = object.slices.axes[static_cast<std::size_t>(a)].count();
+    std::vector<char> seen(n * nz, 0);
+    auto cells_of = [&](std::size_t t, auto&& visit) {
+      const auto& r = object.ranges[t];
+      for (std::size_t i = r[2 * a]; i <= r[2 * a + 1] && i < n; ++i)
+        for (std::size_t j = r[4]; j <= r[5] && j < nz; ++j)
+          if (!visit(i * nz + j)) return false;
+      return true;
+    };
+    for (std::size_t t = 0; t < keep.size(); ++t)
+      if (keep[t]) cells_of(t, [&](std::size_t c) { return seen[c] = 1, true; });
+    std::size_t dropped = 0;
+    for (std::size_t t = 0; t < keep.size(); ++t)
+      dropped += !keep[t] && cells_of(t, [&](std::size_t c) { return !seen[c]; });
+    best.cell_dropped = std::max(best.cell_dropped, dropped);
+  }
+  best.cell_dropped = std::max(best.cell_dropped, best.dropped);
   return best;
 }
 

@@ -48,7 +48,10 @@ SliceChoice choose_slices(const SliceWiseObject& object, const SliceOcclusion& o
 
 // The form that drops the most triangles while keeping every triangle marked in `keep` (per
 // triangle of the object): what three bytes could do at best if the visible triangles were known,
-// e.g. the oracle's witnessed ones. Measures the representation apart from the queries.
+// e.g. the oracle's witnessed ones. Measures the representation apart from the queries. Its
+// cell_dropped: the triangles none of whose cells (on the better vertical axis) holds a kept
+// triangle, what a per-cell record could drop; equal to `dropped` when the kept triangles fit
+// one form (Fig. 2's premise).
 SliceChoice best_form_keeping(const SliceWiseObject& object, const std::vector<char>& keep);
 
 }  // namespace cullcheck::slice_wise
