@@ -11,6 +11,7 @@ add_executable(oracle_test
   ${CMAKE_CURRENT_LIST_DIR}/tests/ray_plan_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/roof_triangulation_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/view_transform_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/witness_cover_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/witness_recheck_test.cpp)
 target_link_libraries(oracle_test PRIVATE cullcheck_oracle GTest::gtest_main cullcheck_warnings)
 add_test(NAME oracle_test COMMAND oracle_test)

@@ -347,7 +347,9 @@ ObjectVisibility tower_alone_from(Vec3 centre, bool self_occlusion, bool turned_
 
 // 6 m from the facade the tower's box spans more than 80 degrees up: no zoomed view holds it, and
 // the six cube faces take its queries. Its walls on the sides and at the back, its roof and floor
-// turn away from the whole cell, so its far slices (along y, into the depth) hide behind it.
+// turn away from the whole cell, so its far slices (along y, into the depth) hide behind it. Per
+// triangle (each part of a slice bisected on its own, the best form over the triangles not shown
+// hidden) one more slice drops than the rectangle of hidden cells gave (588 triangles, y 0 to 2).
 TEST(CellCulling, ANearTowersFacesTurnedAwayFromTheCellHideItsFarSlices) {
   const Vec3 centre{10, -6, 1.7};
   const ObjectVisibility published = tower_alone_from(centre, false, false);
@@ -356,9 +358,9 @@ TEST(CellCulling, ANearTowersFacesTurnedAwayFromTheCellHideItsFarSlices) {
   EXPECT_TRUE(faces.zoom_refused);
   EXPECT_EQ(published.choice.dropped, 0u) << "nothing but the tower itself could hide part of it";
   EXPECT_EQ(eroded_self.choice.dropped, 180u) << "its eroded solid alone: the far slices reach round to the side walls";
-  EXPECT_EQ(faces.choice.dropped, 588u) << "of " << tower().triangles.size();
+  EXPECT_EQ(faces.choice.dropped, 608u) << "of " << tower().triangles.size();
   EXPECT_EQ(faces.indices.work_axis, 1);
-  EXPECT_EQ(faces.indices.y, 2) << "y slices 0 to 2 of 5 visible";
+  EXPECT_EQ(faces.indices.y, 1) << "y slices 0 to 1 of 5 visible";
   EXPECT_EQ(faces.choice.form, VisibleForm::vertical);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 #include <stdexcept>
@@ -74,27 +75,70 @@ std::vector<char> faces_turned_to_cell(const MeshObject& m, Vec3 centre, double 
 // faces turned away from the cell are left out (`facing` not empty), the boxes of the others cut
 // to the slab, grouped by the slice of the next horizontal axis (both, for a horizontal slice)
 // where each begins, so that the faces at opposite walls do not share one box. None: hidden.
-std::vector<Box3> slice_parts(const SliceWiseObject& o, const MeshObject& m, std::size_t a, std::size_t i,
-                              const std::vector<char>& facing) {
+struct SlicePart {
+  int key = 0;  // part_key of its triangles
+  Box3 box;
+};
+
+int part_key(const std::array<std::uint8_t, 6>& r, std::size_t a) { return a == 0 ? r[2] : a == 1 ? r[0] : r[0] * 256 + r[2]; }
+
+std::vector<SlicePart> slice_parts(const SliceWiseObject& o, const MeshObject& m, std::size_t a, std::size_t i,
+                                   const std::vector<char>& facing) {
   const Box3& slab = o.slice_boxes[a][i];
-  if (facing.empty()) return {slab};
+  if (facing.empty()) return {{0, slab}};
   std::map<int, Box3> groups;
   const AxisSlices& s = o.slices.axes[a];
   for (std::uint32_t k = s.begin[i]; k < s.begin[i + 1]; ++k) {
     const std::uint32_t t = s.triangles[k];
     if (!facing[t]) continue;
-    const auto& r = o.ranges[t];
-    const int key = a == 0 ? r[2] : a == 1 ? r[0] : r[0] * 256 + r[2];
-    Box3& g = groups[key];
+    Box3& g = groups[part_key(o.ranges[t], a)];
     for (std::uint32_t v : m.triangles[t]) g.extend(m.vertices[v]);
   }
-  std::vector<Box3> out;
+  std::vector<SlicePart> out;
   for (auto& [key, g] : groups) {
     g.lo = {std::max(g.lo.x, slab.lo.x), std::max(g.lo.y, slab.lo.y), std::max(g.lo.z, slab.lo.z)};
     g.hi = {std::min(g.hi.x, slab.hi.x), std::min(g.hi.y, slab.hi.y), std::min(g.hi.z, slab.hi.z)};
-    out.push_back(g);
+    out.push_back({key, g});
   }
   return out;
+}
+
+// With the parts' own hidden heights known (metres above the object's bottom, per vertical axis,
+// slice and part key), the facing triangles that are hidden at every point: each of its cells
+// (vertical slice i, horizontal slice j) hidden by its part of slice i up to the cell's top (or
+// its own), or by horizontal slice j whole. Turned-away faces are hidden by the object itself.
+// A triangle is dropped when either vertical axis shows it hidden; a form that keeps every
+// triangle left keeps every visible one.
+std::vector<char> possibly_visible(const SliceWiseObject& o, const MeshObject& m, const std::vector<char>& facing,
+                                   const std::array<std::vector<std::map<int, double>>, 2>& part_height,
+                                   const std::vector<char>& z_hidden) {
+  constexpr double kSlack = 1e-9;
+  const AxisSlices& zs = o.slices.axes[2];
+  std::vector<char> keep(o.ranges.size(), 0);
+  for (std::size_t t = 0; t < keep.size(); ++t) {
+    if (!facing[t]) continue;
+    const auto& r = o.ranges[t];
+    double top_t = -std::numeric_limits<double>::infinity();
+    for (std::uint32_t v : m.triangles[t]) top_t = std::max(top_t, m.vertices[v].z);
+    top_t -= o.box.lo.z;
+    bool hidden = false;
+    for (std::size_t a = 0; a < 2 && !hidden; ++a) {
+      bool all = true;
+      for (std::size_t i = r[2 * a]; i <= r[2 * a + 1] && all; ++i) {
+        const auto& parts = part_height[a];
+        const auto it = i < parts.size() ? parts[i].find(part_key(r, a)) : std::map<int, double>::const_iterator{};
+        const double h = i < parts.size() && it != parts[i].end() ? it->second : -1.0;
+        for (std::size_t j = r[4]; j <= r[5] && all; ++j) {
+          if (j < z_hidden.size() && z_hidden[j]) continue;
+          const double top = j < zs.count() ? std::min(top_t, zs.origin + (zs.slab[j] + 1.0) * zs.thickness - o.box.lo.z) : top_t;
+          all = h + kSlack >= top;
+        }
+      }
+      hidden = all;
+    }
+    keep[t] = !hidden;
+  }
+  return keep;
 }
 
 }  // namespace
@@ -230,32 +274,61 @@ CellPvs CellCuller::cull(Vec3 centre) {
         const MeshObject* mesh = obj.is_mesh ? &scene_.scene().meshes[obj.scene_index] : nullptr;
         std::vector<char> facing;
         if (options_.self_occlusion && options_.turned_away_faces && mesh && obj.outward_solids && cell_outside) facing = faces_turned_to_cell(*mesh, centre, h);
+        // Per vertical axis, slice and part: the height up to which the part is hidden.
+        std::array<std::vector<std::map<int, double>>, 2> part_height;
         for (std::size_t a = 0; a < 2; ++a) {
           const AxisSlices& s = obj.slices.axes[a];
+          part_height[a].resize(s.count());
           for (std::size_t i = 0; i < s.count(); ++i) {
-            const std::vector<Box3> parts = mesh ? slice_parts(obj, *mesh, a, i, facing) : std::vector<Box3>{obj.slice_boxes[a][i]};
-            auto hidden_to = [&](int k) {
-              for (Box3 b : parts) {
-                if (k < steps) b.hi.z = std::min(b.hi.z, obj.box.lo.z + k * options_.delta);
-                if (b.hi.z < b.lo.z) continue;  // nothing of this part that low
-                if (!zoom_hidden(b, stats)) return false;
-              }
-              return true;
+            const std::vector<SlicePart> parts = mesh ? slice_parts(obj, *mesh, a, i, facing) : std::vector<SlicePart>{{0, obj.slice_boxes[a][i]}};
+            auto hidden_to = [&](Box3 b, int k) {
+              if (k < steps) b.hi.z = std::min(b.hi.z, obj.box.lo.z + k * options_.delta);
+              return b.hi.z < b.lo.z || zoom_hidden(b, stats);  // nothing of the part that low: hidden
             };
-            int lo_k = 0, hi_k = steps;  // largest k whose box is hidden (0: none)
-            while (lo_k < hi_k) {
-              const int mid = (lo_k + hi_k + 1) / 2;
-              if (hidden_to(mid)) lo_k = mid;
-              else hi_k = mid - 1;
+            // Largest k whose box is hidden (0: none), by bisection: per part when the facing
+            // triangles are known (each part's height says which of its triangles are hidden),
+            // else for the slice at once (it is hidden to k when every part is).
+            auto bisect = [&](auto&& hidden_at) {
+              int lo_k = 0, hi_k = steps;
+              while (lo_k < hi_k) {
+                const int mid = (lo_k + hi_k + 1) / 2;
+                if (hidden_at(mid)) lo_k = mid;
+                else hi_k = mid - 1;
+              }
+              return lo_k >= steps ? height : lo_k * options_.delta;
+            };
+            double slice_height = height;
+            if (!facing.empty()) {
+              for (const SlicePart& p : parts) {
+                const double h = bisect([&](int k) { return hidden_to(p.box, k); });
+                part_height[a][i][p.key] = h;
+                slice_height = std::min(slice_height, h);
+              }
+            } else {
+              slice_height = bisect([&](int k) {
+                return std::all_of(parts.begin(), parts.end(), [&](const SlicePart& p) { return hidden_to(p.box, k); });
+              });
             }
-            occ.hidden_height[a].push_back(lo_k >= steps ? height : lo_k * options_.delta);
+            occ.hidden_height[a].push_back(slice_height);
           }
         }
         for (std::size_t j = 0; j < obj.slices.axes[2].count(); ++j) {
-          const std::vector<Box3> parts = mesh ? slice_parts(obj, *mesh, 2, j, facing) : std::vector<Box3>{obj.slice_boxes[2][j]};
-          occ.z_hidden.push_back(std::all_of(parts.begin(), parts.end(), [&](const Box3& b) { return zoom_hidden(b, stats); }) ? 1 : 0);
+          const std::vector<SlicePart> parts = mesh ? slice_parts(obj, *mesh, 2, j, facing) : std::vector<SlicePart>{{0, obj.slice_boxes[2][j]}};
+          occ.z_hidden.push_back(std::all_of(parts.begin(), parts.end(), [&](const SlicePart& p) { return zoom_hidden(p.box, stats); }) ? 1 : 0);
         }
         v.choice = choose_slices(obj, occ);
+        if (!facing.empty()) {
+          // Algorithm 3 over triangles: the best form keeping every triangle not shown hidden
+          // drops at least what the rectangle of hidden cells drops (its triangles are all shown
+          // hidden), more where a long triangle's visible part kept a cell it reaches into.
+          const std::vector<char> keep = possibly_visible(obj, *mesh, facing, part_height, occ.z_hidden);
+          SliceChoice by_triangle = best_form_keeping(obj, keep);
+          if (by_triangle.dropped > v.choice.dropped) {
+            by_triangle.any_hidden_cell = true;
+            by_triangle.cell_dropped = std::max(v.choice.cell_dropped, static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 0)));
+            v.choice = by_triangle;
+          }
+        }
         v.indices = v.choice.indices;
       }
     }

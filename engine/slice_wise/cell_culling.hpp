@@ -52,7 +52,13 @@ struct CellCullingOptions {
   // the cell are left out of its slices' queries when the cell lies outside the object's box: the
   // object itself hides them from every eye (exactly, not through its shrunk solid), and the
   // faces left are grouped by where they stand, so that the far slices' boxes do not reach round
-  // to the walls facing the cell.
+  // to the walls facing the cell. Each group's hidden height is then found on its own, which
+  // says per triangle whether it is hidden (every cell of it hidden by its own group, or by a
+  // horizontal slice); Algorithm 3 picks the best form keeping every triangle not shown hidden,
+  // which drops at least what the rectangle of hidden cells drops: a long triangle whose visible
+  // part keeps it no longer keeps the far cells it reaches into. The turned-away faces are
+  // dropped whatever surrounds them; a ray can meet one only where it grazes the edge it shares
+  // with a facing face, which draws that point (oracle/witness_cover.hpp).
   bool turned_away_faces = true;
 };
 
