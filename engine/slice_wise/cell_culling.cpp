@@ -112,8 +112,7 @@ std::vector<SlicePart> slice_parts(const SliceWiseObject& o, const MeshObject& m
 std::vector<char> possibly_visible(const SliceWiseObject& o, const MeshObject& m, const std::vector<char>& facing,
                                    const std::array<std::vector<std::map<int, double>>, 2>& part_height,
                                    const std::vector<char>& z_hidden) {
-  constexpr double kSlack = 1e-9;
-  const AxisSlices& zs = o.slices.axes[2];
+  const std::size_t nz = o.slices.axes[2].count();
   std::vector<char> keep(o.ranges.size(), 0);
   for (std::size_t t = 0; t < keep.size(); ++t) {
     if (!facing[t]) continue;
@@ -130,8 +129,8 @@ std::vector<char> possibly_visible(const SliceWiseObject& o, const MeshObject& m
         const double h = i < parts.size() && it != parts[i].end() ? it->second : -1.0;
         for (std::size_t j = r[4]; j <= r[5] && all; ++j) {
           if (j < z_hidden.size() && z_hidden[j]) continue;
-          const double top = j < zs.count() ? std::min(top_t, zs.origin + (zs.slab[j] + 1.0) * zs.thickness - o.box.lo.z) : top_t;
-          all = h + kSlack >= top;
+          const double top = j < nz ? std::min(top_t, horizontal_slice_top(o, j)) : top_t;
+          all = h + kHeightSlack >= top;
         }
       }
       hidden = all;

@@ -5,10 +5,6 @@
 namespace cullcheck::slice_wise {
 namespace {
 
-// Heights compare with 1 nm of slack: a slice hidden to the object's top is measured as the box's
-// height, and a slab's top is recomputed from its origin and thickness.
-constexpr double kHeightSlack = 1e-9;
-
 // low[w][k]: triangles with every slice of axis a below w and every horizontal slice below k;
 // high[w][k]: every slice of axis a among the last w. Row stride nz + 1.
 struct FormCounts {
@@ -64,6 +60,11 @@ std::string_view visible_form_name(VisibleForm f) {
   return "?";
 }
 
+double horizontal_slice_top(const SliceWiseObject& object, std::size_t j) {
+  const AxisSlices& zs = object.slices.axes[2];
+  return zs.origin + (zs.slab[j] + 1.0) * zs.thickness - object.box.lo.z;
+}
+
 SliceChoice choose_slices(const SliceWiseObject& object, const SliceOcclusion& occ) {
   SliceChoice best;
   best.indices = all_visible(object.slices);
@@ -71,7 +72,7 @@ SliceChoice choose_slices(const SliceWiseObject& object, const SliceOcclusion& o
   const std::size_t nz = zs.count();
   if (nz == 0 || occ.z_hidden.size() != nz) return best;
   std::vector<double> top(nz);
-  for (std::size_t j = 0; j < nz; ++j) top[j] = zs.origin + (zs.slab[j] + 1.0) * zs.thickness - object.box.lo.z;
+  for (std::size_t j = 0; j < nz; ++j) top[j] = horizontal_slice_top(object, j);
   for (int a = 0; a < 2; ++a) {
     const std::size_t n = object.slices.axes[static_cast<std::size_t>(a)].count();
     const std::vector<double>& h = occ.hidden_height[static_cast<std::size_t>(a)];

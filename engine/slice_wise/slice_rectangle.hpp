@@ -46,6 +46,12 @@ struct SliceChoice {
 
 SliceChoice choose_slices(const SliceWiseObject& object, const SliceOcclusion& occlusion);
 
+// The top of horizontal slice j, in metres above the object's bottom (SliceOcclusion's heights),
+// and the slack hidden heights are compared with (a slice hidden to the object's top is measured
+// as the box's height, and a slab's top is recomputed from its origin and thickness).
+double horizontal_slice_top(const SliceWiseObject& object, std::size_t j);
+inline constexpr double kHeightSlack = 1e-9;
+
 // The form that drops the most triangles while keeping every triangle marked in `keep` (per
 // triangle of the object): what three bytes could do at best if the visible triangles were known,
 // e.g. the oracle's witnessed ones. Measures the representation apart from the queries. Its
