@@ -33,6 +33,7 @@ struct Counts {
   std::size_t cases = 0, eyes = 0, witnessed_triangles = 0, witnessed_in_cut_objects = 0, cut_objects = 0;
   std::size_t drawn_by_another = 0;  // credited to a dropped face at a point a kept face draws (oracle/witness_cover.hpp)
   std::size_t violations = 0;
+  std::size_t kept_eroded_jointly = 0;  // PVS objects eroded with touching neighbours (voxel_erosion.hpp)
   std::map<std::string, std::size_t> configurations;
 };
 
@@ -65,6 +66,7 @@ void check_cell(Counts& counts, const oracle::Oracle& truth, const SliceWiseScen
     kept.emplace(o.id, std::move(k));
     cut.emplace(o.id, ov.choice.dropped > 0);
     counts.cut_objects += ov.choice.dropped > 0;
+    counts.kept_eroded_jointly += o.eroded_with > 1;
   }
 
   oracle::SamplingOptions sampling;
@@ -195,13 +197,19 @@ TEST(SliceWiseCulling, EveryWitnessedTriangleOfTheRealLod2DistrictLiesInAKeptSli
   const PropertyOutcome outcome = run_property("slice-wise-conservative-lod2", 12, true, [&] { check_hague_case(city, counts); });
   std::cerr << "The Hague: cases " << counts.cases << ", eyes " << counts.eyes << ", witnessed triangles "
             << counts.witnessed_triangles << " (" << counts.witnessed_in_cut_objects << " in objects the indices cut), objects cut "
-            << counts.cut_objects << ", witnesses of dropped faces drawn by a kept one " << counts.drawn_by_another << "; configurations:";
+            << counts.cut_objects << ", witnesses of dropped faces drawn by a kept one " << counts.drawn_by_another
+            << ", PVS objects eroded with their neighbours " << counts.kept_eroded_jointly << "; configurations:";
   for (const auto& [name, n] : counts.configurations) std::cerr << " " << name << " " << n;
   std::cerr << "\n";
   EXPECT_TRUE(outcome.held);
   EXPECT_EQ(counts.configurations.size(), 3u) << "every configuration reached";
   EXPECT_GT(counts.cut_objects, counts.cases) << "the property must reach buildings whose slices are dropped";
   EXPECT_GT(counts.witnessed_in_cut_objects, 100u);
+  // Row houses: the eroded scene erodes buildings that share walls as one solid each row.
+  std::size_t jointly = 0;
+  for (const SliceWiseObject& o : city.eroded->objects()) jointly += o.eroded_with > 1;
+  EXPECT_EQ(jointly, 574u);
+  EXPECT_GT(counts.kept_eroded_jointly, counts.cases) << "the property must reach cells among rows eroded as one";
 }
 
 TEST(SliceWiseCulling, OccludersNotShrunkByTheCellFailTheProperty) {
@@ -239,6 +247,12 @@ TEST(SliceWiseTable, TheGapToTheBestFormAddsUpOverItsKinds) {
   ASSERT_GT(indices, best) << "the indices keep more than the best form on this city";
   EXPECT_NEAR(share, 1.0, 1e-9);
   EXPECT_EQ(slice_table_violations(table), 0u);
+}
+
+TEST(SliceWiseTable, RefusesAnOracleOfOneEyePerSide) {
+  SliceTableOptions o;
+  o.oracle_eyes_per_side = 1;
+  EXPECT_THROW(slice_wise_table(o), std::invalid_argument);
 }
 
 // The report's section feeds the gate and the ledger: a violation in any run fails both.

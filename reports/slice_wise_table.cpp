@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "core/formats/footprint_formats.hpp"
@@ -112,7 +113,8 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
   const auto& objects = prepared.objects();
 
   // Table 1.
-  std::size_t triangles = 0, slices = 0, pointers = 0, faces_in = 0, faces_removed = 0, collisions = 0, eroded = 0, boxes = 0;
+  std::size_t triangles = 0, slices = 0, pointers = 0, faces_in = 0, faces_removed = 0, collisions = 0, eroded = 0, boxes = 0, eroded_jointly = 0;
+  double joint_groups = 0;  // each member adds 1 / its group's size
   std::vector<double> shrink_s, tris_per_object;
   Box3 extent;
   for (const SliceWiseObject& ob : objects) {
@@ -121,6 +123,8 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
     for (const AxisSlices& a : ob.slices.axes) slices += a.count(), pointers += a.triangles.size();
     faces_in += ob.shrink.faces_in, faces_removed += ob.shrink.faces_removed, collisions += ob.shrink.collisions_removed;
     eroded += ob.shrunk_by == Shrinking::voxel_erosion, boxes += ob.occluder_boxes;
+    if (ob.eroded_with > 1) ++eroded_jointly;
+    joint_groups += ob.eroded_with > 1 ? 1.0 / ob.eroded_with : 0.0;
     shrink_s.push_back(ob.shrink_seconds);
     extent.extend(ob.box.lo), extent.extend(ob.box.hi);
   }
@@ -182,6 +186,8 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
                     {"shrink_collisions_removed", collisions},
                     {"objects_eroded", eroded},
                     {"occluder_boxes", boxes},
+                    {"objects_eroded_with_neighbours", eroded_jointly},
+                    {"joint_erosion_groups", static_cast<std::size_t>(std::lround(joint_groups))},
                     {"pvs_objects_median", median(pvs_sizes)},
                     {"coarse_candidates_median", median(candidates)},
                     {"queries_median", median(queries)},
@@ -267,11 +273,13 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
       cut.emplace(v.object, v.choice.dropped > 0);
     }
     const Vec3 c = centres[ci];
-    for (int a = -1; a <= 1; ++a)
-      for (int b = -1; b <= 1; ++b) {
-        const Vec3 eye{c.x + a * side / 2, c.y + b * side / 2, c.z};
+    const int n = o.oracle_eyes_per_side;
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        // An n x n grid over the cell, its corners the cell's (n = 3: corners, edge midpoints, centre).
+        const Vec3 eye{c.x + side * (double(a) / (n - 1) - 0.5), c.y + side * (double(b) / (n - 1) - 0.5), c.z};
         if (inside_some_box(prepared, eye)) continue;
-        const auto key = std::pair{ci, 3 * (a + 1) + b + 1};
+        const auto key = std::pair{ci, n * a + b};
         if (!cache.count(key)) {
           Camera cam;
           cam.position = eye;
@@ -406,6 +414,7 @@ json city_row(const std::string& name, const Scene& scene, const CameraPath& wal
 }  // namespace
 
 json slice_wise_table(const SliceTableOptions& o) {
+  if (o.oracle_eyes_per_side < 2) throw std::invalid_argument("slice table: the oracle needs at least 2 eyes per side of a cell");
   json table;
   json cities = json::array();
   generators::StreetWalkParams walk;
@@ -435,10 +444,13 @@ json slice_wise_table(const SliceTableOptions& o) {
   table["max_slices"] = o.slicing.max_slices;
   table["slice_m"] = o.slicing.slice_m;
   table["voxel_m"] = o.voxel_m;
+  table["oracle_eyes_per_side"] = o.oracle_eyes_per_side;
   table["violations"] = slice_table_violations(table);
   std::ostringstream replay;
   replay << "cullcheck report --slice-table --slice-frames " << o.frames << " --slice-cell " << o.cell_side
-         << " --slice-oracle-cells " << o.oracle_cells;
+         << " --slice-thickness " << o.slicing.slice_m << " --slice-oracle-cells " << o.oracle_cells;
+  if (o.voxel_m != 0.25) replay << " --slice-voxel " << o.voxel_m;
+  if (o.oracle_eyes_per_side != 3) replay << " --slice-oracle-eyes " << o.oracle_eyes_per_side;
   if (!o.cityjson.empty()) replay << " --slice-cityjson " << o.cityjson;
   if (!o.generated) replay << " --slice-no-generated";
   replay << " --method frustum --path-params '{\"frames\":1}' -o slice/report.json";
@@ -523,11 +535,12 @@ std::string slice_wise_table_text(const json& table) {
         << t2.value("cells", std::size_t{0}) << " walk cells\n";
     std::snprintf(line, sizeof line,
                   "    table 2: %zu slices, %zu pointers (%.1f MB); PVS %.1f ms per cell median (p95 %.1f), %.0f objects; "
-                  "shrinking %.3f s per object, faces removed %zu of %zu\n",
+                  "shrinking %.3f s per object, faces removed %zu of %zu, %zu objects eroded with touching neighbours (%zu rows)\n",
                   t2.value("slices", std::size_t{0}), t2.value("triangle_pointers", std::size_t{0}), t2.value("slice_memory_mb", 0.0),
                   t2.value("pvs_ms_per_cell_median", 0.0), t2.value("pvs_ms_per_cell_p95", 0.0), t2.value("pvs_objects_median", 0.0),
                   t2.value("shrink_s_per_object_mean", 0.0), t2.value("shrink_faces_removed", std::size_t{0}),
-                  t2.value("shrink_faces_in", std::size_t{0}));
+                  t2.value("shrink_faces_in", std::size_t{0}), t2.value("objects_eroded_with_neighbours", std::size_t{0}),
+                  t2.value("joint_erosion_groups", std::size_t{0}));
     out << line;
     std::snprintf(line, sizeof line,
                   "    table 3: %.0f triangles per frame slice-wise against %.0f building-level (%.1f%%); per-cell slices %.0f\n",

@@ -33,6 +33,7 @@ struct SliceTableOptions {
   slice_wise::CellCullingOptions culling;
   slice_wise::SlicingOptions slicing;
   int oracle_cells = 4;               // cells checked by the oracle, spread over the walk
+  int oracle_eyes_per_side = 3;       // eyes per checked cell: an n x n grid, corners included (n >= 2)
   std::string cityjson;               // a LoD2 CityJSON file for the real-city row; empty: none
   bool generated = true;              // the generated detailed city's row (false: the CityJSON file's only)
   // The runs: as published (Minkowski vertex shrinking, other objects only), then the corrected
@@ -44,7 +45,7 @@ struct SliceTableOptions {
   std::vector<Run> runs{{slice_wise::Shrinking::minkowski_mesh, false},
                         {slice_wise::Shrinking::voxel_erosion, false},
                         {slice_wise::Shrinking::voxel_erosion, true}};
-  double voxel_m = 0.5;
+  double voxel_m = 0.25;              // voxel_erosion's grid (SliceSceneOptions::voxel_m)
   // The generated city: the default city's layout (2,808 buildings) in detailed meshes; the walk
   // follows its streets.
   generators::DetailedCityParams detailed = [] {

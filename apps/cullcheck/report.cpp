@@ -180,10 +180,24 @@ Runner add_report(CLI::App& app) {
   sub->add_option("--slice-cell", f->slice_table_options.cell_side, "View-cell side of --slice-table, metres")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1000.0));
+  sub->add_option("--slice-thickness", f->slice_table_options.slicing.slice_m,
+                  "Target slice thickness of --slice-table, metres (the paper's slices are as wide as its view cells); an object "
+                  "needing more than 32 slices on an axis gets thicker ones")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1000.0));
   sub->add_option("--slice-oracle-cells", f->slice_table_options.oracle_cells,
                   "Cells of --slice-table checked by the oracle from their corners, edge midpoints and centre")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
+  sub->add_option("--slice-voxel", f->slice_table_options.voxel_m,
+                  "Voxel side of --slice-table's voxel erosion, metres (a wall recedes by the cell's half-side and up to one voxel)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 100.0));
+  sub->add_option("--slice-oracle-eyes", f->slice_table_options.oracle_eyes_per_side,
+                  "Eyes per side of each checked cell of --slice-table: an n x n grid with the cell's corners (3: corners, edge "
+                  "midpoints and centre); denser grids witness more of what some eye of the cell sees")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 33));
   sub->add_option("--slice-cityjson", f->slice_table_options.cityjson,
                   "A LoD2 CityJSON file measured by --slice-table too (each Building and BuildingPart a mesh)")
       ->check(CLI::ExistingFile);

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/parallel_indices.hpp"
+#include "engine/slice_wise/solid_parts.hpp"
 #include "engine/slice_wise/voxel_erosion.hpp"
 
 namespace cullcheck::slice_wise {
@@ -135,43 +138,113 @@ SliceWiseScene::SliceWiseScene(const Scene& scene, const SliceSceneOptions& opti
     throw std::invalid_argument("slice-wise: voxel_m must be positive and finite");
   const std::size_t n = scene.meshes.size() + scene.buildings.size();
   objects_.resize(n);
+  std::vector<MeshObject> converted(scene.buildings.size());  // the buildings as closed meshes
+  auto mesh_of = [&](std::size_t i) -> const MeshObject& {
+    return i < scene.meshes.size() ? scene.meshes[i] : converted[i - scene.meshes.size()];
+  };
   std::vector<double> slice_time(n, 0.0);
   const auto start = Clock::now();
   for_each_index(n, options.threads, [&] {
     return [&](std::size_t i) {
       SliceWiseObject& o = objects_[i];
       const bool mesh = i < scene.meshes.size();
-      const MeshObject converted = mesh ? MeshObject{} : building_as_mesh(scene.buildings[i - scene.meshes.size()]);
-      const MeshObject& m = mesh ? scene.meshes[i] : converted;
+      if (!mesh) converted[i - scene.meshes.size()] = building_as_mesh(scene.buildings[i - scene.meshes.size()]);
+      const MeshObject& m = mesh_of(i);
       o.id = m.id, o.is_mesh = mesh, o.scene_index = mesh ? i : i - scene.meshes.size();
       o.box = m.bounds;
-      auto t = Clock::now();
+      const auto t = Clock::now();
       o.slices = slice_object(m, options.slicing);
       fill_ranges(o);
       fill_slice_boxes(o, m);
       slice_time[i] = seconds_since(t);
-      t = Clock::now();
-      if (options.shrinking == Shrinking::voxel_erosion && m.closed) {
-        const double e = options.epsilon, s = e / std::sqrt(2.0);
-        const Vec3 element = options.erosion_element == SliceSceneOptions::Element::square ? Vec3{s, s, 0} : Vec3{e, e, e};
-        const VoxelErosion eroded = erode_closed_mesh(m, element, options.voxel_m);
-        o.occluder = boxes_mesh(eroded.boxes);
-        o.occluder_boxes = eroded.boxes.size();
-        o.outward_solids = eroded.outward;
-        o.shrunk_by = Shrinking::voxel_erosion;
-      } else {
-        TriangleMesh plain;
-        plain.vertices = m.vertices;
-        plain.triangles = m.triangles;
-        ShrunkMesh shrunk = shrink_mesh(plain, options.epsilon, m.bounds.lo.z);
-        o.occluder = std::move(shrunk.mesh);
-        o.shrink = shrunk.stats;
-      }
-      o.occluder_box = box_of(o.occluder);
-      o.shrink_seconds = seconds_since(t);
     };
   });
-  for (double s : slice_time) slicing_seconds_ += s;
+
+  // Shrinking, in groups: closed meshes that lie against one another are eroded as one solid
+  // (voxel_erosion.hpp's erode_closed_meshes), everything else on its own.
+  const bool voxels = options.shrinking == Shrinking::voxel_erosion;
+  std::vector<std::vector<std::uint32_t>> groups;
+  {
+    std::vector<std::uint32_t> closed;  // object indices
+    for (std::uint32_t i = 0; i < n; ++i)
+      if (voxels && mesh_of(i).closed) closed.push_back(i);
+    std::vector<std::uint32_t> root(n);
+    std::iota(root.begin(), root.end(), 0u);
+    auto find = [&](std::uint32_t v) {
+      while (root[v] != v) v = root[v] = root[root[v]];
+      return v;
+    };
+    if (options.erode_touching && closed.size() > 1) {
+      std::vector<const MeshObject*> meshes;
+      for (std::uint32_t i : closed) meshes.push_back(&mesh_of(i));
+      for (const auto& [a, b] : touching_pairs(meshes)) {
+        const std::uint32_t ra = find(closed[a]), rb = find(closed[b]);
+        root[std::max(ra, rb)] = std::min(ra, rb);  // the lowest index is a group's root
+      }
+    }
+    std::vector<std::uint32_t> group_of(n, UINT32_MAX);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t r = find(i);
+      if (group_of[r] == UINT32_MAX) group_of[r] = static_cast<std::uint32_t>(groups.size()), groups.emplace_back();
+      groups[group_of[r]].push_back(i);
+    }
+  }
+  const double e = options.epsilon, s = e / std::sqrt(2.0);
+  const Vec3 element = options.erosion_element == SliceSceneOptions::Element::square ? Vec3{s, s, 0} : Vec3{e, e, e};
+  auto erode_alone = [&](std::uint32_t i) {
+    SliceWiseObject& o = objects_[i];
+    const MeshObject& m = mesh_of(i);
+    if (voxels && m.closed) {
+      const VoxelErosion eroded = erode_closed_mesh(m, element, options.voxel_m);
+      o.occluder = boxes_mesh(eroded.boxes);
+      o.occluder_boxes = eroded.boxes.size();
+      o.outward_solids = eroded.outward;
+      o.shrunk_by = Shrinking::voxel_erosion;
+    } else {
+      TriangleMesh plain;
+      plain.vertices = m.vertices;
+      plain.triangles = m.triangles;
+      ShrunkMesh shrunk = shrink_mesh(plain, options.epsilon, m.bounds.lo.z);
+      o.occluder = std::move(shrunk.mesh);
+      o.shrink = shrunk.stats;
+    }
+    o.occluder_box = box_of(o.occluder);
+  };
+  for_each_index(groups.size(), options.threads, [&] {
+    return [&](std::size_t g) {
+      const auto t = Clock::now();
+      const std::vector<std::uint32_t>& members = groups[g];
+      Box3 joint;
+      for (std::uint32_t i : members) joint.extend(mesh_of(i).bounds.lo), joint.extend(mesh_of(i).bounds.hi);
+      const Vec3 extent = joint.hi - joint.lo;
+      const double cells = std::ceil(extent.x / options.voxel_m) * std::ceil(extent.y / options.voxel_m) * std::ceil(extent.z / options.voxel_m);
+      if (members.size() == 1 || !(cells <= double(options.max_joint_voxels))) {
+        for (std::uint32_t i : members) {
+          const auto ti = Clock::now();
+          erode_alone(i);
+          objects_[i].shrink_seconds = seconds_since(ti);
+        }
+        return;
+      }
+      std::vector<const MeshObject*> meshes;
+      for (std::uint32_t i : members) meshes.push_back(&mesh_of(i));
+      const VoxelErosion eroded = erode_closed_meshes(meshes, element, options.voxel_m, options.max_joint_voxels);
+      std::vector<std::vector<Box3>> own(members.size());
+      for (std::size_t b = 0; b < eroded.boxes.size(); ++b) own[eroded.box_owner[b]].push_back(eroded.boxes[b]);
+      const double share = seconds_since(t) / double(members.size());
+      for (std::size_t q = 0; q < members.size(); ++q) {
+        SliceWiseObject& o = objects_[members[q]];
+        o.occluder = boxes_mesh(own[q]);
+        o.occluder_boxes = own[q].size();
+        o.outward_solids = eroded.outward_of[q] != 0;
+        o.shrunk_by = Shrinking::voxel_erosion;
+        o.eroded_with = static_cast<std::uint32_t>(members.size());
+        o.occluder_box = box_of(o.occluder);
+        o.shrink_seconds = share;
+      }
+    };
+  });
+  for (double t : slice_time) slicing_seconds_ += t;
   shrinking_seconds_ = seconds_since(start);
   std::vector<Box3> boxes;
   for (const SliceWiseObject& o : objects_) boxes.push_back(o.box);

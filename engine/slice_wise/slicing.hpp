@@ -27,7 +27,8 @@ namespace cullcheck::slice_wise {
 
 struct SlicingOptions {
   int max_slices = 32;    // per axis (at most 127: indices are signed bytes)
-  double slice_m = 3.0;   // target slab thickness, metres (fewer slabs for small objects)
+  double slice_m = 2.0;   // target slab thickness, metres (fewer slabs for small objects); the paper makes
+                          // its slices as wide as its view cells, and the default cell is 2 m
 };
 
 // One object's slices along one axis.

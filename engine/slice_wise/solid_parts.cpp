@@ -1,7 +1,9 @@
 #include "engine/slice_wise/solid_parts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <tuple>
 
 namespace cullcheck::slice_wise {
@@ -49,6 +51,28 @@ PlaneKey key_of(Vec3 n, double d) {
   return {std::lround(n.x * 1e6), std::lround(n.y * 1e6), std::lround(n.z * 1e6), std::lround(d * 1e3)};
 }
 
+// Coordinates in a plane of normal n: the two axes left when its dominant axis is dropped.
+struct PlaneProjection {
+  int drop;
+  explicit PlaneProjection(Vec3 n)
+      : drop(std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0 : std::abs(n.y) >= std::abs(n.z) ? 1 : 2) {}
+  Vec2 operator()(Vec3 v) const { return drop == 0 ? Vec2{v.y, v.z} : drop == 1 ? Vec2{v.z, v.x} : Vec2{v.x, v.y}; }
+  // Triangle t of m, counter-clockwise.
+  Polygon triangle(const MeshObject& m, std::uint32_t t) const {
+    const auto& tri = m.triangles[t];
+    Polygon p{(*this)(m.vertices[tri[0]]), (*this)(m.vertices[tri[1]]), (*this)(m.vertices[tri[2]])};
+    if (area2(p) < 0) std::swap(p[1], p[2]);
+    return p;
+  }
+};
+
+// Whether every vertex of triangle t of m lies within the tolerance of the plane n . p = offset.
+bool in_plane(const MeshObject& m, std::uint32_t t, Vec3 n, double offset) {
+  for (std::uint32_t v : m.triangles[t])
+    if (std::abs(dot(n, m.vertices[v]) - offset) > kPlaneTolerance) return false;
+  return true;
+}
+
 }  // namespace
 
 SolidParts solid_parts(const MeshObject& m) {
@@ -91,28 +115,22 @@ SolidParts solid_parts(const MeshObject& m) {
     if (against == by_plane.end()) continue;
     // Project on the plane's dominant axis, so that t is counter-clockwise.
     const Vec3 n = normal[i];
-    const int drop = std::abs(n.x) >= std::abs(n.y) && std::abs(n.x) >= std::abs(n.z) ? 0 : std::abs(n.y) >= std::abs(n.z) ? 1 : 2;
-    auto project = [&](Vec3 v) { return drop == 0 ? Vec2{v.y, v.z} : drop == 1 ? Vec2{v.z, v.x} : Vec2{v.x, v.y}; };
+    const PlaneProjection project(n);
     auto lift = [&](Vec2 q) {  // back onto the plane n . p = offset
       const double d = offset[i];
-      if (drop == 0) return Vec3{(d - n.y * q.x - n.z * q.y) / n.x, q.x, q.y};
-      if (drop == 1) return Vec3{q.y, (d - n.z * q.x - n.x * q.y) / n.y, q.x};
+      if (project.drop == 0) return Vec3{(d - n.y * q.x - n.z * q.y) / n.x, q.x, q.y};
+      if (project.drop == 1) return Vec3{q.y, (d - n.z * q.x - n.x * q.y) / n.y, q.x};
       return Vec3{q.x, q.y, (d - n.x * q.x - n.y * q.y) / n.z};
     };
-    const auto& t = m.triangles[i];
-    Polygon own{project(m.vertices[t[0]]), project(m.vertices[t[1]]), project(m.vertices[t[2]])};
-    if (area2(own) < 0) std::swap(own[1], own[2]);
+    const Polygon own = project.triangle(m, i);
     const double total = area2(own);
     std::vector<Polygon> left{own}, next;
     bool touched = false;
     for (std::uint32_t j : against->second) {
       if (out.part_of[j] == out.part_of[i]) continue;
-      const auto& u = m.triangles[j];
-      bool coplanar = true;
-      for (int k = 0; k < 3; ++k) coplanar = coplanar && std::abs(dot(n, m.vertices[u[k]]) - offset[i]) <= kPlaneTolerance;
-      if (!coplanar) continue;
-      Vec2 cover[3] = {project(m.vertices[u[0]]), project(m.vertices[u[1]]), project(m.vertices[u[2]])};
-      if (cross(cover[1] - cover[0], cover[2] - cover[0]) < 0) std::swap(cover[1], cover[2]);
+      if (!in_plane(m, j, n, offset[i])) continue;
+      const Polygon covering = project.triangle(m, j);
+      const Vec2 cover[3] = {covering[0], covering[1], covering[2]};
       next.clear();
       touched = true;
       for (const Polygon& piece : left) subtract(piece, cover, next);
@@ -134,6 +152,71 @@ SolidParts solid_parts(const MeshObject& m) {
     }
   }
   return out;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> touching_pairs(const std::vector<const MeshObject*>& meshes) {
+  const auto n = static_cast<std::uint32_t>(meshes.size());
+  // Pairs whose boxes meet (within the plane tolerance): a sweep along x.
+  std::vector<std::uint32_t> by_x(n);
+  std::iota(by_x.begin(), by_x.end(), 0u);
+  std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t a, std::uint32_t b) { return meshes[a]->bounds.lo.x < meshes[b]->bounds.lo.x; });
+  std::set<std::pair<std::uint32_t, std::uint32_t>> near;
+  for (std::size_t p = 0; p < n; ++p) {
+    const Box3& a = meshes[by_x[p]]->bounds;
+    for (std::size_t q = p + 1; q < n && meshes[by_x[q]]->bounds.lo.x <= a.hi.x + kPlaneTolerance; ++q) {
+      const Box3& b = meshes[by_x[q]]->bounds;
+      if (b.lo.y > a.hi.y + kPlaneTolerance || a.lo.y > b.hi.y + kPlaneTolerance || b.lo.z > a.hi.z + kPlaneTolerance ||
+          a.lo.z > b.hi.z + kPlaneTolerance)
+        continue;
+      near.insert(std::minmax(by_x[p], by_x[q]));
+    }
+  }
+  if (near.empty()) return {};
+  // The triangles of the meshes in some such pair, by plane.
+  struct Face {
+    PlaneKey key;
+    std::uint32_t mesh, triangle;
+    Vec3 normal;
+    double offset;
+  };
+  std::vector<std::uint8_t> wanted(n, 0);
+  for (const auto& [a, b] : near) wanted[a] = wanted[b] = 1;
+  std::vector<Face> faces;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!wanted[i]) continue;
+    const MeshObject& m = *meshes[i];
+    for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
+      const auto& tri = m.triangles[t];
+      const Vec3 c = cross(m.vertices[tri[1]] - m.vertices[tri[0]], m.vertices[tri[2]] - m.vertices[tri[0]]);
+      const double len = length(c);
+      if (!(len > 0)) continue;
+      const Vec3 normal = c * (1.0 / len);
+      const double offset = dot(normal, m.vertices[tri[0]]);
+      faces.push_back({key_of(normal, offset), i, t, normal, offset});
+    }
+  }
+  auto by_key = [](const Face& a, const Face& b) { return std::tie(a.key, a.mesh, a.triangle) < std::tie(b.key, b.mesh, b.triangle); };
+  std::sort(faces.begin(), faces.end(), by_key);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> found;
+  for (const Face& f : faces) {
+    Face against{key_of(f.normal * -1.0, -f.offset), 0, 0, {}, 0};
+    auto it = std::lower_bound(faces.begin(), faces.end(), against, by_key);
+    const Vec3 n = f.normal;
+    const PlaneProjection project(n);
+    const Polygon own = project.triangle(*meshes[f.mesh], f.triangle);
+    for (; it != faces.end() && it->key == against.key; ++it) {
+      if (it->mesh <= f.mesh) continue;  // each pair once, from its lower mesh
+      const auto pair = std::make_pair(f.mesh, it->mesh);
+      if (found.count(pair) || !near.count(pair)) continue;
+      const MeshObject& o = *meshes[it->mesh];
+      if (!in_plane(o, it->triangle, n, f.offset)) continue;
+      const Polygon other = project.triangle(o, it->triangle);
+      Polygon common = own;
+      for (int k = 0; k < 3 && !common.empty(); ++k) common = half_plane(common, other[k], other[(k + 1) % 3], true);
+      if (!common.empty() && area2(common) > 1e-6 * std::min(area2(own), area2(other))) found.insert(pair);
+    }
+  }
+  return {found.begin(), found.end()};
 }
 
 }  // namespace cullcheck::slice_wise

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -36,5 +37,12 @@ struct SolidParts {
 };
 
 SolidParts solid_parts(const MeshObject& mesh);
+
+// Which of several meshes lie against one another: the pairs (i < j, ascending) where a triangle of
+// one and a triangle of the other lie in one plane (the same tolerances as above), face opposite
+// ways and overlap with more than 1e-6 of the smaller one's area. A row of houses sharing party walls is
+// such a chain; buildings that only meet at an edge or a corner are not. Only meshes whose boxes
+// meet are compared, so a city of free-standing buildings costs one sweep over the boxes.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> touching_pairs(const std::vector<const MeshObject*>& meshes);
 
 }  // namespace cullcheck::slice_wise

@@ -37,9 +37,10 @@ bool polygon_meets_box(Vec3 m, Vec3 h, const Vec3* poly, std::size_t n) {
 
 double orient(Vec2 a, Vec2 b, Vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
 
-}  // namespace
-
-VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_t max_voxels) {
+// Erodes `m`, the concatenation of one or more meshes: mesh q holds triangles first[q] .. first[q + 1] - 1
+// (first ends with the triangle count) and is closed when closed[q].
+VoxelErosion erode(const MeshObject& m, const std::vector<std::uint32_t>& first, const std::vector<std::uint8_t>& closed, Vec3 h,
+                   double r, std::size_t max_voxels) {
   for (double a : {h.x, h.y, h.z})
     if (!(a >= 0) || !std::isfinite(a)) throw std::invalid_argument("voxel erosion: the element's half-sides must be finite and not negative");
   if (!(r > 0) || !std::isfinite(r)) throw std::invalid_argument("voxel erosion: voxel size must be positive and finite");
@@ -63,6 +64,10 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_
   // object are inside it).
   const SolidParts parts = solid_parts(m);
   out.solids = parts.parts, out.interior_triangles = parts.interior_count, out.partly_interior_triangles = parts.partly_count;
+  const std::size_t meshes = first.size() - 1;
+  std::vector<std::uint32_t> mesh_of_part(parts.parts, 0);  // a solid's vertices are one mesh's
+  for (std::uint32_t q = 0; q < meshes; ++q)
+    for (std::uint32_t t = first[q]; t < first[q + 1]; ++t) mesh_of_part[parts.part_of[t]] = q;
   {
     std::vector<double> volume(parts.parts, 0.0);  // six times each solid's signed volume
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -70,7 +75,10 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_
       const Vec3 a = m.vertices[tri[0]] - lo, b = m.vertices[tri[1]] - lo, c = m.vertices[tri[2]] - lo;
       volume[parts.part_of[t]] += dot(a, cross(b, c));
     }
-    out.outward = m.closed && std::all_of(volume.begin(), volume.end(), [](double v) { return v > 0; });
+    out.outward_of.assign(closed.begin(), closed.end());
+    for (std::uint32_t p = 0; p < parts.parts; ++p)
+      if (!(volume[p] > 0)) out.outward_of[mesh_of_part[p]] = 0;
+    out.outward = std::all_of(out.outward_of.begin(), out.outward_of.end(), [](std::uint8_t o) { return o != 0; });
   }
   std::vector<std::uint8_t> touched(out.voxels, 0);
   const Vec3 half{r / 2 + kWiden, r / 2 + kWiden, r / 2 + kWiden};
@@ -121,6 +129,7 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_
         column_triangles[static_cast<std::size_t>(j) * nx + static_cast<std::size_t>(i)].push_back(t);
   }
   std::vector<std::uint8_t> solid(out.voxels, 0);
+  std::vector<std::uint32_t> owner(meshes > 1 ? out.voxels : 0, 0);  // the mesh of the first solid holding it
   std::vector<std::vector<double>> crossings(std::max<std::uint32_t>(parts.parts, 1));
   for (std::size_t j = 0; j < ny; ++j)
     for (std::size_t i = 0; i < nx; ++i) {
@@ -154,10 +163,13 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_
         const std::size_t v = at(i, j, k);
         if (touched[v]) continue;
         const double z = lo.z + (double(k) + 0.5) * r;
-        bool inside = false;
-        for (const auto& c : crossings)
-          inside = inside || (std::upper_bound(c.begin(), c.end(), z) - c.begin()) % 2 == 1;
-        if (inside) solid[v] = 1, ++out.inside;
+        for (std::uint32_t p = 0; p < crossings.size(); ++p) {
+          const auto& c = crossings[p];
+          if ((std::upper_bound(c.begin(), c.end(), z) - c.begin()) % 2 == 0) continue;
+          solid[v] = 1, ++out.inside;
+          if (meshes > 1) owner[v] = mesh_of_part[p];
+          break;
+        }
       }
     }
 
@@ -189,10 +201,15 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_
 
   // 3. Boxes.
   std::vector<std::uint8_t> used(out.voxels, 0);
-  auto free_voxel = [&](std::size_t i, std::size_t j, std::size_t k) { return solid[at(i, j, k)] && !used[at(i, j, k)]; };
+  std::uint32_t mesh = 0;  // of the box being grown: boxes merge within one mesh
+  auto free_voxel = [&](std::size_t i, std::size_t j, std::size_t k) {
+    const std::size_t v = at(i, j, k);
+    return solid[v] && !used[v] && (meshes == 1 || owner[v] == mesh);
+  };
   for (std::size_t k = 0; k < nz; ++k)
     for (std::size_t j = 0; j < ny; ++j)
       for (std::size_t i = 0; i < nx; ++i) {
+        if (meshes > 1) mesh = owner[at(i, j, k)];
         if (!free_voxel(i, j, k)) continue;
         std::size_t i1 = i, j1 = j, k1 = k;
         while (i1 + 1 < nx && free_voxel(i1 + 1, j, k)) ++i1;
@@ -214,8 +231,32 @@ VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_
         out.kept += (i1 - i + 1) * (j1 - j + 1) * (k1 - k + 1);
         out.boxes.push_back({{lo.x + double(i) * r, lo.y + double(j) * r, lo.z + double(k) * r},
                              {lo.x + double(i1 + 1) * r, lo.y + double(j1 + 1) * r, lo.z + double(k1 + 1) * r}});
+        out.box_owner.push_back(mesh);
       }
   return out;
+}
+
+}  // namespace
+
+VoxelErosion erode_closed_mesh(const MeshObject& m, Vec3 h, double r, std::size_t max_voxels) {
+  return erode(m, {0, static_cast<std::uint32_t>(m.triangles.size())}, {static_cast<std::uint8_t>(m.closed)}, h, r, max_voxels);
+}
+
+VoxelErosion erode_closed_meshes(const std::vector<const MeshObject*>& meshes, Vec3 h, double r, std::size_t max_voxels) {
+  MeshObject joint;
+  std::vector<std::uint32_t> first{0};
+  std::vector<std::uint8_t> closed;
+  for (const MeshObject* m : meshes) {
+    const auto base = static_cast<std::uint32_t>(joint.vertices.size());
+    joint.vertices.insert(joint.vertices.end(), m->vertices.begin(), m->vertices.end());
+    for (const auto& t : m->triangles) joint.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    joint.bounds.extend(m->bounds.lo), joint.bounds.extend(m->bounds.hi);
+    first.push_back(static_cast<std::uint32_t>(joint.triangles.size()));
+    closed.push_back(m->closed);
+  }
+  if (meshes.empty()) return {};
+  joint.id = meshes.front()->id;
+  return erode(joint, first, closed, h, r, max_voxels);
 }
 
 TriangleMesh boxes_mesh(const std::vector<Box3>& boxes) {

@@ -43,6 +43,10 @@ struct VoxelErosion {
   std::size_t interior_triangles = 0;  // faces between two of them: not the union's boundary
   std::size_t partly_interior_triangles = 0;  // faces partly so: only the rest is boundary
   bool outward = false;  // every solid wound outward (positive signed volume)
+  // Eroding several meshes as one (erode_closed_meshes): per box, the mesh it belongs to (the one
+  // with a solid holding its voxels' centres), and per mesh whether its own solids are all outward.
+  std::vector<std::uint32_t> box_owner;
+  std::vector<std::uint8_t> outward_of;
 };
 
 // Erodes by the box [-h.x, h.x] x [-h.y, h.y] x [-h.z, h.z] (a cube of half-side ε holds the
@@ -50,6 +54,16 @@ struct VoxelErosion {
 // Throws std::invalid_argument unless r is positive and finite and h's sides finite and not
 // negative, or when the grid would exceed `max_voxels`.
 VoxelErosion erode_closed_mesh(const MeshObject& mesh, Vec3 h, double voxel_m, std::size_t max_voxels = 50'000'000);
+
+// Closed meshes that lie against one another (a row of houses sharing party walls, solid_parts.hpp's
+// touching_pairs) eroded as the union of their solids, then the kept voxels handed back to the mesh
+// each one's centre lies in (boxes merge within one mesh only). Each mesh eroded on its own recedes
+// from every party wall, so a row of houses becomes blocks with a slot of 2 h.x between
+// neighbours, through which a whole district behind them is seen; the union has no slot there.
+// Every box still lies inside the union eroded by the element, which is all Theorem 1 asks of an
+// occluder: it hides a point only where the solids hide it from every eye of the cell.
+VoxelErosion erode_closed_meshes(const std::vector<const MeshObject*>& meshes, Vec3 h, double voxel_m,
+                                 std::size_t max_voxels = 50'000'000);
 
 // The boxes as one triangle mesh (12 triangles a box, outward).
 TriangleMesh boxes_mesh(const std::vector<Box3>& boxes);
