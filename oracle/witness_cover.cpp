@@ -52,4 +52,13 @@ bool seen_point_drawn(const TriangleMesh& mesh, std::uint32_t object_index, cons
   return false;
 }
 
+WitnessVerdict witness_verdict(const TriangleMesh& mesh, std::uint32_t prim, const WitnessRay& ray, const std::vector<char>* kept) {
+  if (!kept) return WitnessVerdict::missed;
+  const std::uint32_t owner = mesh.owner_index[prim];
+  if (owner < mesh.building_count || (*kept)[prim - mesh.first_triangle[owner]]) return WitnessVerdict::drawn;
+  return seen_point_drawn(mesh, owner, ray, [&](std::uint32_t local) { return (*kept)[local] != 0; })
+             ? WitnessVerdict::drawn_by_another
+             : WitnessVerdict::missed;
+}
+
 }  // namespace cullcheck::oracle

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "oracle/mesh.hpp"
 #include "oracle/ray_oracle.hpp"
@@ -29,5 +30,15 @@ double point_triangle_distance(Vec3 p, Vec3 a, Vec3 b, Vec3 c);
 // within tolerance_m and does not turn its back to the ray.
 bool seen_point_drawn(const TriangleMesh& mesh, std::uint32_t object_index, const WitnessRay& ray,
                       const std::function<bool(std::uint32_t local)>& drawn, double tolerance_m = 1e-3);
+
+// How a method's kept triangles answer one witness (triangle `prim`, seen along `ray`): the object
+// is culled (`kept` null), or `kept` holds the object's triangles it draws, by index within the
+// object (a building, mesh.hpp's 2.5D prisms, is drawn whole when kept at all).
+enum class WitnessVerdict : std::uint8_t {
+  drawn,             // the credited triangle is kept
+  drawn_by_another,  // dropped, but a kept face beside it draws the point (seen_point_drawn)
+  missed,            // a violation
+};
+WitnessVerdict witness_verdict(const TriangleMesh& mesh, std::uint32_t prim, const WitnessRay& ray, const std::vector<char>* kept);
 
 }  // namespace cullcheck::oracle

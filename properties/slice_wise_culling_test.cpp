@@ -88,8 +88,9 @@ void check_cell(Counts& counts, const oracle::Oracle& truth, const SliceWiseScen
       ++counts.witnessed_triangles;
       const auto it = kept.find(id);
       counts.witnessed_in_cut_objects += it != kept.end() && cut.at(id);
-      if (it != kept.end() && (owner < mesh.building_count || it->second[local])) continue;
-      if (it != kept.end() && oracle::seen_point_drawn(mesh, owner, ray, [&](std::uint32_t l) { return it->second[l] != 0; })) {
+      const oracle::WitnessVerdict verdict = oracle::witness_verdict(mesh, prim, ray, it == kept.end() ? nullptr : &it->second);
+      if (verdict == oracle::WitnessVerdict::drawn) continue;
+      if (verdict == oracle::WitnessVerdict::drawn_by_another) {
         ++counts.drawn_by_another;
         continue;
       }

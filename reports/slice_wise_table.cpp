@@ -304,10 +304,11 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
           }
           const auto it = kept.find(object);
           if (it != kept.end() && cut.at(object)) ++in_cut;
-          if (it != kept.end() && (!mesh_object || it->second[local])) continue;
+          const oracle::WitnessVerdict verdict = oracle::witness_verdict(mesh, prim, ray, it == kept.end() ? nullptr : &it->second);
+          if (verdict == oracle::WitnessVerdict::drawn) continue;
           // Credited to a dropped face at a point a kept face beside it draws (an edge or vertex
           // the ray grazed): what the ray saw is drawn.
-          if (it != kept.end() && oracle::seen_point_drawn(mesh, owner, ray, [&](std::uint32_t l) { return it->second[l] != 0; })) {
+          if (verdict == oracle::WitnessVerdict::drawn_by_another) {
             ++drawn_by_another;
             continue;
           }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <set>
+#include <vector>
 
 namespace cullcheck::oracle {
 namespace {
@@ -72,6 +73,24 @@ TEST(WitnessCover, AGrazedEdgeIsDrawnByTheKeptFaceTurnedToTheEye) {
   EXPECT_TRUE(seen_point_drawn(m, 0, ray_to(eye, {0.0005, 0, 0.5}, 2), kept({0, 1})));
   EXPECT_FALSE(seen_point_drawn(m, 0, ray_to(eye, {0.005, 0, 0.5}, 2), kept({0, 1})));
   EXPECT_FALSE(seen_point_drawn(m, 1, edge, kept({0, 1}))) << "no object 1";
+}
+
+// The verdict the report and the slice-wise property share: culled, drawn, drawn by the kept face
+// beside a dropped one, or missed.
+TEST(WitnessCover, AWitnessIsDrawnDrawnByAnotherOrMissed) {
+  TriangleMesh m = cube();
+  const Vec3 eye{-5, 3, 0.5};
+  const WitnessRay edge = ray_to(eye, {0, 0, 0.5}, 2), inside = ray_to(eye, {0.5, 0, 0.5}, 2), front = ray_to(eye, {0, 0.5, 0.5}, 0);
+  std::vector<char> all_but_y0(12, 1);
+  all_but_y0[2] = all_but_y0[3] = 0;
+  EXPECT_EQ(witness_verdict(m, 2, edge, nullptr), WitnessVerdict::missed) << "the object culled";
+  EXPECT_EQ(witness_verdict(m, 0, front, &all_but_y0), WitnessVerdict::drawn);
+  EXPECT_EQ(witness_verdict(m, 2, edge, &all_but_y0), WitnessVerdict::drawn_by_another);
+  EXPECT_EQ(witness_verdict(m, 2, inside, &all_but_y0), WitnessVerdict::missed);
+  const std::vector<char> none(12, 0);
+  EXPECT_EQ(witness_verdict(m, 0, front, &none), WitnessVerdict::missed);
+  m.building_count = 1;  // a 2.5D building is drawn whole once kept
+  EXPECT_EQ(witness_verdict(m, 0, front, &none), WitnessVerdict::drawn);
 }
 
 }  // namespace
