@@ -209,21 +209,28 @@ TEST(VoxelErosion, APlainBlockShrinksByTheCubeOfVoxelsAndKeepsItsFoot) {
   const double eps = 1.4142135623730951;
   const VoxelErosion e = erode_closed_mesh(m, {eps, eps, eps}, 0.5);
   ASSERT_EQ(e.boxes.size(), 1u);
-  // The wall voxels touch the walls; three more (1.5 m >= ε) eroded; the floor stays on the ground.
-  EXPECT_EQ(e.boxes[0].lo, (Vec3{2, 2, 0}));
-  EXPECT_EQ(e.boxes[0].hi, (Vec3{18, 12, 43}));
-  EXPECT_EQ(e.ambiguous_columns, 0u);
+  // On the grid: the wall voxels touch the walls, three more (1.5 m >= ε) eroded, the floor stays
+  // on the ground (the kept voxels span [2, 18] x [2, 12] x [0, 43]). Pushed out to the boundary,
+  // the box is the exact erosion by the cube: every wall and the roof recede by ε.
   EXPECT_EQ(e.kept, 32u * 20u * 86u);
+  const Box3& b = e.boxes[0];
+  for (auto [got, want] : {std::pair{b.lo.x, eps}, {b.lo.y, eps}, {b.hi.x, 20 - eps}, {b.hi.y, 14 - eps}, {b.hi.z, 45 - eps}})
+    EXPECT_NEAR(got, want, 1e-8);
+  EXPECT_EQ(b.lo.z, 0.0);
+  EXPECT_EQ(e.ambiguous_columns, 0u);
 }
 
 // A 2 m view cell at eye height moves the eye by at most 1 m along x and along y, and not at all
-// up or down: eroded by that square, the walls recede by two voxels and the roof stays.
+// up or down: eroded by that square, the walls recede by 1 m and the roof stays (on the grid, the
+// voxels touching a wall or the roof are lost too; pushing the box out gives them back).
 TEST(VoxelErosion, APlainBlockErodedByASquareCellKeepsItsRoof) {
   const VoxelErosion e = erode_closed_mesh(plain_block(), {1, 1, 0}, 0.5);
   ASSERT_EQ(e.boxes.size(), 1u);
-  EXPECT_EQ(e.boxes[0].lo, (Vec3{1.5, 1.5, 0}));
-  EXPECT_EQ(e.boxes[0].hi, (Vec3{18.5, 12.5, 44.5})) << "only the voxels touching the roof are lost";
-  EXPECT_EQ(e.kept, 34u * 22u * 89u);
+  EXPECT_EQ(e.kept, 34u * 22u * 89u) << "the voxels of [1.5, 18.5] x [1.5, 12.5] x [0, 44.5]";
+  const Box3& b = e.boxes[0];
+  for (auto [got, want] : {std::pair{b.lo.x, 1.0}, {b.lo.y, 1.0}, {b.hi.x, 19.0}, {b.hi.y, 13.0}, {b.hi.z, 45.0}})
+    EXPECT_NEAR(got, want, 1e-8);
+  EXPECT_EQ(b.lo.z, 0.0);
   EXPECT_THROW(erode_closed_mesh(plain_block(), {1, 1, -0.5}, 0.5), std::invalid_argument);
 }
 
@@ -298,8 +305,10 @@ TEST(VoxelErosion, ErodesThePodiumAndTowerAsOneSolid) {
   // Without the shared face taken as inside, the voxels touching it would be outside and erosion
   // would cut a slot from z = 4 to z = 8 through the building.
   for (double z : {3.9, 5.0, 6.0, 7.0, 8.1, 17.9}) EXPECT_TRUE(in_some_box(e.boxes, {5, 5, z})) << "z = " << z;
-  EXPECT_FALSE(in_some_box(e.boxes, {5, 5, 18.1})) << "the tower's top, eroded";
-  EXPECT_FALSE(in_some_box(e.boxes, {3.9, 5, 10})) << "the tower's wall, eroded";
+  EXPECT_FALSE(in_some_box(e.boxes, {5, 5, 18.7})) << "the tower's top, eroded by ε";
+  EXPECT_TRUE(in_some_box(e.boxes, {5, 5, 18.5}));
+  EXPECT_FALSE(in_some_box(e.boxes, {3.3, 5, 10})) << "the tower's wall, eroded by ε";
+  EXPECT_TRUE(in_some_box(e.boxes, {3.5, 5, 10}));
   EXPECT_TRUE(in_some_box(e.boxes, {2.1, 5, 3.9})) << "the podium's core";
   // Conservative: every kept box, grown by ε, stays inside the podium or the tower (sampled).
   auto in_union = [](Vec3 p) {
@@ -319,9 +328,9 @@ TEST(VoxelErosion, ErodesThePodiumAndTowerAsOneSolid) {
 
 TEST(VoxelErosion, APodiumAndTowerErodedByASquareCellStayInsideWhenGrownByIt) {
   const VoxelErosion e = erode_closed_mesh(podium_and_tower(), {1, 1, 0}, 0.5);
-  EXPECT_TRUE(in_some_box(e.boxes, {5, 5, 19.4})) << "the tower's top stays (less the voxels touching it)";
-  EXPECT_FALSE(in_some_box(e.boxes, {3.4, 5, 10})) << "the tower's wall recedes by the voxel touching it and 1 m";
-  EXPECT_TRUE(in_some_box(e.boxes, {3.6, 5, 10}));
+  EXPECT_TRUE(in_some_box(e.boxes, {5, 5, 19.99})) << "the tower's top stays";
+  EXPECT_FALSE(in_some_box(e.boxes, {2.9, 5, 10})) << "the tower's wall recedes by 1 m";
+  EXPECT_TRUE(in_some_box(e.boxes, {3.1, 5, 10}));
   EXPECT_TRUE(in_some_box(e.boxes, {1.6, 5, 5.4})) << "the podium's rim under its roof";
   for (const Box3& b : e.boxes)
     for (double x = b.lo.x - 1; x <= b.hi.x + 1 + 1e-9; x += 0.25)
@@ -356,7 +365,7 @@ TEST(VoxelErosion, TwoHousesSharingAPartyWallErodeWithoutASlot) {
   const MeshObject a = box_object(1, {{0, 0, 0}, {10, 10, 8}}), b = box_object(2, {{10, 0, 0}, {20, 10, 12}});
   const Vec3 cell{1, 1, 0};
   const VoxelErosion alone_a = erode_closed_mesh(a, cell, 0.5), alone_b = erode_closed_mesh(b, cell, 0.5);
-  EXPECT_FALSE(in_some_box(alone_a.boxes, {9, 5, 4}) || in_some_box(alone_b.boxes, {11, 5, 4})) << "each recedes from the wall";
+  EXPECT_FALSE(in_some_box(alone_a.boxes, {9.1, 5, 4}) || in_some_box(alone_b.boxes, {10.9, 5, 4})) << "each recedes from the wall";
   const VoxelErosion joint = erode_closed_meshes({&a, &b}, cell, 0.5);
   ASSERT_EQ(joint.box_owner.size(), joint.boxes.size());
   EXPECT_EQ(joint.outward_of, (std::vector<std::uint8_t>{1, 1}));
@@ -366,9 +375,9 @@ TEST(VoxelErosion, TwoHousesSharingAPartyWallErodeWithoutASlot) {
   for (double x : {10.01, 11.0}) EXPECT_TRUE(in_some_box(own[1], {x, 5, 4})) << "x = " << x;
   for (const Box3& k : own[0]) EXPECT_LE(k.hi.x, 10.0) << "A keeps what lies in A";
   for (const Box3& k : own[1]) EXPECT_GE(k.lo.x, 10.0);
-  // Above A's roof, B's wall is outside again: it recedes by the voxel touching it and 1 m.
-  EXPECT_FALSE(in_some_box(own[1], {11.4, 5, 10}));
-  EXPECT_TRUE(in_some_box(own[1], {11.6, 5, 10}));
+  // Above A's roof, B's wall is outside again: it recedes by 1 m.
+  EXPECT_FALSE(in_some_box(own[1], {10.9, 5, 10}));
+  EXPECT_TRUE(in_some_box(own[1], {11.1, 5, 10}));
   // Conservative: every box grown by the cell stays inside A or B (sampled).
   for (const Box3& k : joint.boxes)
     for (double x = k.lo.x - 1; x <= k.hi.x + 1 + 1e-9; x += 0.25)
@@ -378,6 +387,20 @@ TEST(VoxelErosion, TwoHousesSharingAPartyWallErodeWithoutASlot) {
           const bool in_b = x >= 10 && x <= 20 && y >= 0 && y <= 10 && z <= 12;
           ASSERT_TRUE(in_a || in_b) << x << " " << y << " " << z;
         }
+}
+
+// A building whose second part stands 0.3 m higher (sloping ground): below that part's floor is
+// open space, not ground. The voxels its floor passes through are lost on the grid; pushed down,
+// the part's box reaches its floor again, and no lower.
+TEST(VoxelErosion, APartStandingHigherKeepsItsFloorAndNoMore) {
+  const TriangleMesh t = boxes_mesh({{{0, 0, 0}, {10, 10, 8}}, {{20, 0, 0.3}, {30, 10, 8}}});
+  MeshObject m;
+  m.vertices = t.vertices, m.triangles = t.triangles;
+  finish_mesh(m);
+  const VoxelErosion e = erode_closed_mesh(m, {1, 1, 0}, 0.25);
+  EXPECT_TRUE(in_some_box(e.boxes, {25, 5, 0.31}));
+  EXPECT_FALSE(in_some_box(e.boxes, {25, 5, 0.29})) << "below the floor is open";
+  EXPECT_TRUE(in_some_box(e.boxes, {5, 5, 0.0})) << "the lower part stands on the ground";
 }
 
 // A thin tower 20 m behind the party wall of two houses, seen from a cell in front of the wall:

@@ -37,6 +37,80 @@ bool polygon_meets_box(Vec3 m, Vec3 h, const Vec3* poly, std::size_t n) {
 
 double orient(Vec2 a, Vec2 b, Vec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); }
 
+double& coord(Vec3& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+double coord(const Vec3& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+// The part of convex polygon `poly` with lo <= p[axis] <= hi (Sutherland-Hodgman, two planes).
+void clip_slab(std::vector<Vec3>& poly, int axis, double lo, double hi, std::vector<Vec3>& scratch) {
+  for (int side = 0; side < 2 && !poly.empty(); ++side) {
+    auto inside = [&](const Vec3& p) { return side == 0 ? coord(p, axis) >= lo : coord(p, axis) <= hi; };
+    const double plane = side == 0 ? lo : hi;
+    scratch.clear();
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const Vec3 &p = poly[k], &q = poly[(k + 1) % poly.size()];
+      const bool pin = inside(p), qin = inside(q);
+      if (pin) scratch.push_back(p);
+      if (pin != qin) {
+        const double t = (plane - coord(p, axis)) / (coord(q, axis) - coord(p, axis));
+        Vec3 x = p + (q - p) * t;
+        coord(x, axis) = plane;
+        scratch.push_back(x);
+      }
+    }
+    poly.swap(scratch);
+  }
+}
+
+// 4. Each box pushed out, face by face (up, down, then the four sides), until the box grown by the
+// element would meet the boundary: the voxels a boundary face passes through were all taken as
+// outside, which loses up to a voxel at every wall and roof, and under a floor above the object's
+// lowest point (a part standing higher on sloping ground). The floor on the lowest plane is not a
+// boundary here: below it is the ground, so a box on it is not pushed down. Pushing the
+// face on +a to `limit` is conservative when the open prism beyond the grown box's face,
+// (face + h_a, limit + h_a) times the grown box's cross-section, holds no point of a boundary
+// polygon: it adjoins the grown box, which lies inside the solid, so it lies inside too. The
+// cross-section is shrunk by 1e-9 m, so faces that only touch its rim do not block, and a face stops
+// 1e-9 m short of its limit. A box stays
+// within the bounds of its own mesh (`within`, by box_owner): across a party wall the union goes on,
+// but the neighbour's side is the neighbour's to cover.
+void push_out(std::vector<Box3>& boxes, const std::vector<std::uint32_t>& box_owner, const std::vector<Box3>& within,
+              const std::vector<std::vector<Vec3>>& boundary, Vec3 h) {
+  constexpr double kTol = 1e-9;
+  std::vector<Box3> bounds(boundary.size());
+  for (std::size_t k = 0; k < boundary.size(); ++k)
+    for (const Vec3& v : boundary[k]) bounds[k].extend(v);
+  const double half[3] = {h.x, h.y, h.z};
+  std::vector<Vec3> poly, scratch;
+  for (std::size_t bi = 0; bi < boxes.size(); ++bi)
+    for (const auto& [axis, up] : {std::pair{2, true}, {2, false}, {0, true}, {0, false}, {1, true}, {1, false}}) {
+      Box3& b = boxes[bi];
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const double ulo = coord(b.lo, u) - half[u] + kTol, uhi = coord(b.hi, u) + half[u] - kTol;
+      const double vlo = coord(b.lo, v) - half[v] + kTol, vhi = coord(b.hi, v) + half[v] - kTol;
+      const double reach = up ? coord(b.hi, axis) + half[axis] : coord(b.lo, axis) - half[axis];  // the grown face
+      double limit = up ? HUGE_VAL : -HUGE_VAL;  // how far the grown face may go
+      for (std::size_t k = 0; k < boundary.size(); ++k) {
+        const Box3& pb = bounds[k];
+        if (coord(pb.hi, u) <= ulo || coord(pb.lo, u) >= uhi || coord(pb.hi, v) <= vlo || coord(pb.lo, v) >= vhi) continue;
+        if (up ? coord(pb.hi, axis) <= reach + kTol : coord(pb.lo, axis) >= reach - kTol) continue;  // wholly behind
+        poly = boundary[k];
+        clip_slab(poly, u, ulo, uhi, scratch);
+        clip_slab(poly, v, vlo, vhi, scratch);
+        if (poly.empty()) continue;
+        double lo_a = HUGE_VAL, hi_a = -HUGE_VAL;
+        for (const Vec3& p : poly) lo_a = std::min(lo_a, coord(p, axis)), hi_a = std::max(hi_a, coord(p, axis));
+        if (up ? hi_a <= reach + kTol : lo_a >= reach - kTol) continue;
+        limit = up ? std::min(limit, std::max(lo_a, reach)) : std::max(limit, std::min(hi_a, reach));
+      }
+      if (!std::isfinite(limit)) continue;  // nothing bounds it: leave it (a closed solid always does)
+      const Box3& own = within[box_owner[bi]];
+      double& face = up ? coord(b.hi, axis) : coord(b.lo, axis);
+      // kTol short of the limit, so that rounding leaves the grown box inside.
+      face = up ? std::max(face, std::min(limit - half[axis] - kTol, coord(own.hi, axis)))
+                : std::min(face, std::max(limit + half[axis] + kTol, coord(own.lo, axis)));
+    }
+}
+
 // Erodes `m`, the concatenation of one or more meshes: mesh q holds triangles first[q] .. first[q + 1] - 1
 // (first ends with the triangle count) and is closed when closed[q].
 VoxelErosion erode(const MeshObject& m, const std::vector<std::uint32_t>& first, const std::vector<std::uint8_t>& closed, Vec3 h,
@@ -99,6 +173,7 @@ VoxelErosion erode(const MeshObject& m, const std::vector<std::uint32_t>& first,
           if (polygon_meets_box(centre, half, poly, n)) touched[v] = 1;
         }
   };
+  std::vector<std::vector<Vec3>> boundary;  // the union's boundary as convex polygons, the floor left out
   for (std::uint32_t ti = 0; ti < m.triangles.size(); ++ti) {
     const auto& t = m.triangles[ti];
     const Vec3 corners[3] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
@@ -106,10 +181,11 @@ VoxelErosion erode(const MeshObject& m, const std::vector<std::uint32_t>& first,
     if (corners[0].z == lo.z && corners[1].z == lo.z && corners[2].z == lo.z) continue;
     if (parts.cover[ti] == SolidParts::interior) continue;
     if (parts.cover[ti] == SolidParts::partly) {
-      for (const auto& piece : parts.boundary_pieces.at(ti)) touch(piece.data(), piece.size());
+      for (const auto& piece : parts.boundary_pieces.at(ti)) touch(piece.data(), piece.size()), boundary.push_back(piece);
       continue;
     }
     touch(corners, 3);
+    boundary.push_back({corners[0], corners[1], corners[2]});
   }
 
   // 1b. Parity along a vertical line through each column, solid by solid: a point is inside the
@@ -233,6 +309,11 @@ VoxelErosion erode(const MeshObject& m, const std::vector<std::uint32_t>& first,
                              {lo.x + double(i1 + 1) * r, lo.y + double(j1 + 1) * r, lo.z + double(k1 + 1) * r}});
         out.box_owner.push_back(mesh);
       }
+  std::vector<Box3> mesh_bounds(meshes);
+  for (std::uint32_t q = 0; q < meshes; ++q)
+    for (std::uint32_t t = first[q]; t < first[q + 1]; ++t)
+      for (std::uint32_t v : m.triangles[t]) mesh_bounds[q].extend(m.vertices[v]);
+  push_out(out.boxes, out.box_owner, mesh_bounds, boundary, h);
   return out;
 }
 

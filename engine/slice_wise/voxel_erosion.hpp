@@ -24,6 +24,10 @@
 //     object's lowest point counts as solid: eyes stand on the ground, so nothing is seen from
 //     below it (the paper's Fig. 16 leaves ground vertices at the ground for the same reason).
 //  3. Boxes: the kept voxels merged greedily (runs along x, widened along y, then raised along z).
+//  4. Each box pushed out face by face as far as the box grown by the element meets no boundary
+//     face (clipped exactly to the grown box's cross-section), 1e-9 m short, and no further than
+//     its mesh's bounds: what the voxels the boundary passes through lost comes back, and an
+//     axis-aligned solid is eroded exactly (a block's walls recede by h, not h plus a voxel).
 // Only for closed meshes (MeshObject::closed): parity means nothing on an open surface.
 #pragma once
 
