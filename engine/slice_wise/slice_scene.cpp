@@ -191,23 +191,29 @@ SliceWiseScene::SliceWiseScene(const Scene& scene, const SliceSceneOptions& opti
   }
   const double e = options.epsilon, s = e / std::sqrt(2.0);
   const Vec3 element = options.erosion_element == SliceSceneOptions::Element::square ? Vec3{s, s, 0} : Vec3{e, e, e};
+  // An object's occluder from its eroded boxes (alone or in a group of `with` objects).
+  auto take_eroded = [&](SliceWiseObject& o, const std::vector<Box3>& boxes, bool outward, std::size_t with) {
+    o.occluder = boxes_mesh(boxes);
+    o.occluder_boxes = boxes.size();
+    o.outward_solids = outward;
+    o.shrunk_by = Shrinking::voxel_erosion;
+    o.eroded_with = static_cast<std::uint32_t>(with);
+    o.occluder_box = box_of(o.occluder);
+  };
   auto erode_alone = [&](std::uint32_t i) {
     SliceWiseObject& o = objects_[i];
     const MeshObject& m = mesh_of(i);
     if (voxels && m.closed) {
       const VoxelErosion eroded = erode_closed_mesh(m, element, options.voxel_m);
-      o.occluder = boxes_mesh(eroded.boxes);
-      o.occluder_boxes = eroded.boxes.size();
-      o.outward_solids = eroded.outward;
-      o.shrunk_by = Shrinking::voxel_erosion;
-    } else {
-      TriangleMesh plain;
-      plain.vertices = m.vertices;
-      plain.triangles = m.triangles;
-      ShrunkMesh shrunk = shrink_mesh(plain, options.epsilon, m.bounds.lo.z);
-      o.occluder = std::move(shrunk.mesh);
-      o.shrink = shrunk.stats;
+      take_eroded(o, eroded.boxes, eroded.outward, 1);
+      return;
     }
+    TriangleMesh plain;
+    plain.vertices = m.vertices;
+    plain.triangles = m.triangles;
+    ShrunkMesh shrunk = shrink_mesh(plain, options.epsilon, m.bounds.lo.z);
+    o.occluder = std::move(shrunk.mesh);
+    o.shrink = shrunk.stats;
     o.occluder_box = box_of(o.occluder);
   };
   for_each_index(groups.size(), options.threads, [&] {
@@ -234,12 +240,7 @@ SliceWiseScene::SliceWiseScene(const Scene& scene, const SliceSceneOptions& opti
       const double share = seconds_since(t) / double(members.size());
       for (std::size_t q = 0; q < members.size(); ++q) {
         SliceWiseObject& o = objects_[members[q]];
-        o.occluder = boxes_mesh(own[q]);
-        o.occluder_boxes = own[q].size();
-        o.outward_solids = eroded.outward_of[q] != 0;
-        o.shrunk_by = Shrinking::voxel_erosion;
-        o.eroded_with = static_cast<std::uint32_t>(members.size());
-        o.occluder_box = box_of(o.occluder);
+        take_eroded(o, own[q], eroded.outward_of[q] != 0, members.size());
         o.shrink_seconds = share;
       }
     };

@@ -66,6 +66,16 @@ struct PlaneProjection {
   }
 };
 
+// The plane of triangle t of m as a unit normal (by the winding) and offset; false when degenerate.
+bool plane_of(const MeshObject& m, std::uint32_t t, Vec3& normal, double& offset) {
+  const auto& tri = m.triangles[t];
+  const Vec3 c = cross(m.vertices[tri[1]] - m.vertices[tri[0]], m.vertices[tri[2]] - m.vertices[tri[0]]);
+  const double len = length(c);
+  if (!(len > 0)) return false;
+  normal = c * (1.0 / len), offset = dot(normal, m.vertices[tri[0]]);
+  return true;
+}
+
 // Whether every vertex of triangle t of m lies within the tolerance of the plane n . p = offset.
 bool in_plane(const MeshObject& m, std::uint32_t t, Vec3 n, double offset) {
   for (std::uint32_t v : m.triangles[t])
@@ -102,11 +112,7 @@ SolidParts solid_parts(const MeshObject& m) {
   std::vector<double> offset(nt);
   std::map<PlaneKey, std::vector<std::uint32_t>> by_plane;
   for (std::uint32_t i = 0; i < nt; ++i) {
-    const auto& t = m.triangles[i];
-    const Vec3 c = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
-    const double len = length(c);
-    if (!(len > 0)) continue;  // degenerate: no side to be inside on
-    normal[i] = c * (1.0 / len), offset[i] = dot(normal[i], m.vertices[t[0]]);
+    if (!plane_of(m, i, normal[i], offset[i])) continue;  // degenerate: no side to be inside on
     by_plane[key_of(normal[i], offset[i])].push_back(i);
   }
   for (std::uint32_t i = 0; i < nt; ++i) {
@@ -186,12 +192,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> touching_pairs(const std::v
     if (!wanted[i]) continue;
     const MeshObject& m = *meshes[i];
     for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
-      const auto& tri = m.triangles[t];
-      const Vec3 c = cross(m.vertices[tri[1]] - m.vertices[tri[0]], m.vertices[tri[2]] - m.vertices[tri[0]]);
-      const double len = length(c);
-      if (!(len > 0)) continue;
-      const Vec3 normal = c * (1.0 / len);
-      const double offset = dot(normal, m.vertices[tri[0]]);
+      Vec3 normal;
+      double offset;
+      if (!plane_of(m, t, normal, offset)) continue;
       faces.push_back({key_of(normal, offset), i, t, normal, offset});
     }
   }

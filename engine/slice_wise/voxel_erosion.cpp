@@ -69,10 +69,9 @@ void clip_slab(std::vector<Vec3>& poly, int axis, double lo, double hi, std::vec
 // face on +a to `limit` is conservative when the open prism beyond the grown box's face,
 // (face + h_a, limit + h_a) times the grown box's cross-section, holds no point of a boundary
 // polygon: it adjoins the grown box, which lies inside the solid, so it lies inside too. The
-// cross-section is shrunk by 1e-9 m, so faces that only touch its rim do not block, and a face stops
-// 1e-9 m short of its limit. A box stays
-// within the bounds of its own mesh (`within`, by box_owner): across a party wall the union goes on,
-// but the neighbour's side is the neighbour's to cover.
+// cross-section is shrunk by 1e-9 m, so faces that only touch its rim do not block, and a face
+// stops 1e-9 m short of its limit. A box stays within the bounds of its own mesh (`within`, by
+// box_owner): across a party wall the union goes on, but the neighbour's side is its own to cover.
 void push_out(std::vector<Box3>& boxes, const std::vector<std::uint32_t>& box_owner, const std::vector<Box3>& within,
               const std::vector<std::vector<Vec3>>& boundary, Vec3 h) {
   constexpr double kTol = 1e-9;
