@@ -99,6 +99,37 @@ TEST(Slicing, RenderingSetsOfAllVisibleAndOfAnLShape) {
   EXPECT_EQ(drawn.size(), expected);
 }
 
+// Both vertical indices at once (work axis 2): a triangle is drawn when it reaches a visible z
+// slice, or a visible x slice and a visible y slice.
+TEST(Slicing, TheRenderingSetOfBothVerticalAxesDropsTheUnionOfTheirRectangles) {
+  const MeshObject m = tower();
+  const SlicedObject s = slice_object(m);
+  VisibilityIndices v = all_visible(s);
+  v.x = -3, v.y = 2, v.z = 8, v.work_axis = kBothVerticalAxes;  // x slices 0..2 and y slices 3.. hidden below z slice 8
+  const std::vector<std::uint32_t> drawn = rendering_set(s, v);
+  const double x3 = s.axes[0].origin + s.axes[0].slab[3] * s.axes[0].thickness;
+  const double y3 = s.axes[1].origin + s.axes[1].slab[3] * s.axes[1].thickness;
+  const double z8 = s.axes[2].origin + s.axes[2].slab[8] * s.axes[2].thickness;
+  std::size_t expected = 0, in_both = 0;
+  for (std::uint32_t t = 0; t < m.triangles.size(); ++t) {
+    Box3 b;
+    for (std::uint32_t k : m.triangles[t]) b.extend(m.vertices[k]);
+    const bool x_hidden = b.hi.x < x3 - 1e-9, y_hidden = b.lo.y > y3 + 1e-9, z_hidden = b.hi.z < z8 - 1e-9;
+    const bool want = !(z_hidden && (x_hidden || y_hidden));
+    expected += want;
+    in_both += z_hidden && x_hidden && y_hidden;
+    EXPECT_EQ(std::binary_search(drawn.begin(), drawn.end(), t), want) << "triangle " << t;
+  }
+  EXPECT_EQ(drawn.size(), expected);
+  EXPECT_GT(in_both, 0u) << "the two rectangles overlap at the corner";
+  EXPECT_EQ(m.triangles.size() - expected, 339u);
+  // Each axis alone drops less than both.
+  v.work_axis = 0;
+  EXPECT_GT(rendering_set(s, v).size(), drawn.size());
+  v.work_axis = 1;
+  EXPECT_GT(rendering_set(s, v).size(), drawn.size());
+}
+
 // One object's SliceWiseObject (slices, per-triangle ranges) through the scene preparation.
 // Sliced in 3 m slabs (7 x 5 x 15 slices for the tower), which the occlusion below is written for.
 SliceWiseObject prepared_object(const MeshObject& m) {
@@ -168,6 +199,35 @@ TEST(Algorithm3, TheBestFormKeepsEveryTriangleItMust) {
     EXPECT_GT(c.dropped, 0u) << "seed " << seed;
     EXPECT_GE(c.cell_dropped, c.dropped) << "seed " << seed;
   }
+}
+
+// With both vertical axes, the best pair of rectangles keeps every kept triangle, drops exactly
+// what its indices drop, and never less than one axis: keeping the triangles that reach the
+// tower's corner of low x and low y, or its top, (as if seen from the south-west over a wall)
+// leaves an L in plan to drop.
+TEST(Algorithm3, TheBestPairOfRectanglesKeepsEveryTriangleItMust) {
+  const MeshObject m = tower();
+  const SliceWiseObject o = prepared_object(m);
+  std::size_t two_sided = 0;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    std::vector<char> keep(m.triangles.size(), 0);
+    const double cx = 2.0 + seed % 7 * 2.5, cy = 1.0 + seed % 3 * 3.0, cz = 3.0 + seed % 5 * 8.0;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      Box3 b;
+      for (std::uint32_t k : m.triangles[t]) b.extend(m.vertices[k]);
+      keep[t] = ((b.lo.x < cx && b.lo.y < cy) || b.hi.z > cz) && (t * 2654435761u + seed) % 2 == 0;
+    }
+    const SliceChoice one = best_form_keeping(o, keep, false), both = best_form_keeping(o, keep, true);
+    const std::vector<std::uint32_t> drawn = rendering_set(o.slices, both.indices);
+    for (std::size_t t = 0; t < keep.size(); ++t)
+      if (keep[t]) {
+        ASSERT_TRUE(std::binary_search(drawn.begin(), drawn.end(), std::uint32_t(t))) << "seed " << seed << " triangle " << t;
+      }
+    EXPECT_EQ(both.dropped, m.triangles.size() - drawn.size()) << "seed " << seed;
+    EXPECT_GE(both.dropped, one.dropped) << "seed " << seed;
+    two_sided += both.form == VisibleForm::two_sided;
+  }
+  EXPECT_GT(two_sided, 10u) << "the corner cases must need both axes";
 }
 
 // The premise measure on known shapes: with every triangle reaching past x = 6 kept, the rest is
@@ -428,7 +488,7 @@ TEST(CellCulling, ATowerBehindAPartyWallIsHiddenWhenTheRowIsErodedAsOne) {
 
 // The tower alone, seen from a 2 m cell in front of its south facade (y = 0): nothing else hides
 // any of it, so only the object itself can.
-ObjectVisibility tower_alone_from(Vec3 centre, bool self_occlusion, bool turned_away_faces) {
+ObjectVisibility tower_alone_from(Vec3 centre, bool self_occlusion, bool turned_away_faces, bool both_axes = false) {
   static const Scene scene = [] {
     Scene s;
     s.meshes.push_back(tower());
@@ -440,6 +500,7 @@ ObjectVisibility tower_alone_from(Vec3 centre, bool self_occlusion, bool turned_
   CellCullingOptions co;
   co.self_occlusion = self_occlusion;
   co.turned_away_faces = turned_away_faces;
+  co.both_vertical_axes = both_axes;
   CellCuller culler(prepared, co);
   const CellPvs pvs = culler.cull(centre);
   EXPECT_EQ(pvs.visible.size(), 1u);
@@ -463,6 +524,31 @@ TEST(CellCulling, ANearTowersFacesTurnedAwayFromTheCellHideItsFarSlices) {
   EXPECT_EQ(faces.indices.work_axis, 1);
   EXPECT_EQ(faces.indices.y, 2) << "y slices 0 to 2 of 7 visible: the 6 m nearest the cell of the 14 m depth";
   EXPECT_EQ(faces.choice.form, VisibleForm::vertical);
+}
+
+// Seen across its south-west corner, the tower (1,504 triangles; 10 x 7 x 23 slices of 2 m) turns
+// its north and east walls away from the cell. One vertical axis drops the lowest 12 m of the two
+// eastmost x slices; both axes, in the same three bytes, drop the northmost y slice's too (the
+// setbacks above keep faces turned to the cell in those slices higher up).
+TEST(CellCulling, BothVerticalAxesDropBothFarWallsOfATowerSeenAcrossItsCorner) {
+  const Vec3 centre{-12, -12, 1.7};
+  const ObjectVisibility one = tower_alone_from(centre, true, true, false);
+  const ObjectVisibility both = tower_alone_from(centre, true, true, true);
+  EXPECT_NE(one.choice.form, VisibleForm::two_sided);
+  EXPECT_EQ(one.indices.work_axis, 0);
+  EXPECT_EQ(one.indices.x, 7);
+  EXPECT_EQ(one.indices.z, 6);
+  EXPECT_EQ(one.choice.dropped, 86u);
+  EXPECT_EQ(both.choice.form, VisibleForm::two_sided);
+  EXPECT_EQ(both.indices.work_axis, kBothVerticalAxes);
+  EXPECT_EQ(both.indices.x, 7);
+  EXPECT_EQ(both.indices.y, 5);
+  EXPECT_EQ(both.indices.z, 6);
+  EXPECT_EQ(both.choice.dropped, 164u);
+  Scene scene;
+  scene.meshes.push_back(tower());
+  const SliceWiseScene prepared(scene, SliceSceneOptions{});
+  EXPECT_EQ(both.choice.dropped, tower().triangles.size() - rendering_set(prepared.objects()[0].slices, both.indices).size());
 }
 
 TEST(Slicing, RefusesMoreSlicesThanAByteHolds) {

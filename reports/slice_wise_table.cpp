@@ -94,11 +94,13 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
   const Shrinking shrinking = run.shrinking;
   row["shrinking"] = shrinking_name(shrinking);
   row["self_occlusion"] = run.self_occlusion;
+  row["both_vertical_axes"] = run.both_vertical_axes;
   // What the occluders are shrunk by: the cell's square (voxel erosion) or the ball of radius ε.
   if (shrinking == Shrinking::voxel_erosion) row["eroded_by"] = "cell square (s/2 on x and y, 0 on z)";
   else row["eroded_by"] = "ball of radius s/sqrt(2) (vertex shrinking)";
   CellCullingOptions culling = o.culling;
   culling.self_occlusion = run.self_occlusion;
+  culling.both_vertical_axes = run.both_vertical_axes;
   const double side = o.cell_side, epsilon = side / std::sqrt(2.0);
 
   auto start = Clock::now();
@@ -227,8 +229,13 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
 
   // Fig. 7: one cell's PVS in bytes (medians over the cells).
   std::vector<double> octree_bytes, list_bytes;
+  // Deep enough to tell apart the slices of the median object on its most sliced axis (not the
+  // cap, which only the largest objects reach).
+  std::vector<double> most_slices;
+  for (const SliceWiseObject& ob : objects)
+    most_slices.push_back(static_cast<double>(std::max({ob.slices.axes[0].count(), ob.slices.axes[1].count(), ob.slices.axes[2].count()})));
   int depth = 0;
-  for (std::size_t m = 1; m < static_cast<std::size_t>(o.slicing.max_slices); m *= 2) ++depth;
+  for (double m = 1; m < median(most_slices); m *= 2) ++depth;
   const double octree_bits = (std::pow(8.0, depth + 1) - 1) / 7;
   for (const CellPvs& c : cells) {
     octree_bytes.push_back(std::ceil(octree_bits / 8) * static_cast<double>(c.visible.size()));
@@ -327,7 +334,7 @@ json run_row(const Scene& scene, const CameraPath& walk, const WalkCells& walk_c
       if (!ob.is_mesh) continue;
       std::vector<char> bits = seen_by_cell.count(v.object) ? seen_by_cell[v.object] : std::vector<char>(ob.triangles(), 0);
       const auto w = static_cast<std::size_t>(std::count(bits.begin(), bits.end(), 1));
-      const SliceChoice ideal = best_form_keeping(ob, bits);
+      const SliceChoice ideal = best_form_keeping(ob, bits, run.both_vertical_axes);
       whole += static_cast<double>(ob.triangles());
       kept_indices += static_cast<double>(ob.triangles() - v.choice.dropped);
       kept_ideal += static_cast<double>(ob.triangles() - ideal.dropped);
@@ -450,8 +457,12 @@ json slice_wise_table(const SliceTableOptions& o) {
   std::ostringstream replay;
   replay << "cullcheck report --slice-table --slice-frames " << o.frames << " --slice-cell " << o.cell_side
          << " --slice-thickness " << o.slicing.slice_m << " --slice-oracle-cells " << o.oracle_cells;
-  if (o.voxel_m != 0.25) replay << " --slice-voxel " << o.voxel_m;
-  if (o.oracle_eyes_per_side != 3) replay << " --slice-oracle-eyes " << o.oracle_eyes_per_side;
+  const SliceTableOptions defaults;
+  if (o.voxel_m != defaults.voxel_m) replay << " --slice-voxel " << o.voxel_m;
+  if (o.oracle_eyes_per_side != defaults.oracle_eyes_per_side) replay << " --slice-oracle-eyes " << o.oracle_eyes_per_side;
+  if (o.slicing.max_slices != defaults.slicing.max_slices) replay << " --slice-max-slices " << o.slicing.max_slices;
+  if (o.culling.delta != defaults.culling.delta) replay << " --slice-delta " << o.culling.delta;
+  if (o.culling.zoom_resolution != defaults.culling.zoom_resolution) replay << " --slice-zoom " << o.culling.zoom_resolution;
   if (!o.cityjson.empty()) replay << " --slice-cityjson " << o.cityjson;
   if (!o.generated) replay << " --slice-no-generated";
   replay << " --method frustum --path-params '{\"frames\":1}' -o slice/report.json";
@@ -532,7 +543,8 @@ std::string slice_wise_table_text(const json& table) {
     out << line;
     for (const json& r : c["runs"]) {
     const json &t2 = r["table_2"], &t3 = r["table_3"], &pr = r["premise"], &or_ = r["oracle"];
-    out << "   " << r.value("shrinking", "") << (r.value("self_occlusion", false) ? " + self-occlusion" : "") << ": "
+    out << "   " << r.value("shrinking", "") << (r.value("self_occlusion", false) ? " + self-occlusion" : "")
+        << (r.value("both_vertical_axes", false) ? ", both vertical axes" : "") << ": "
         << t2.value("cells", std::size_t{0}) << " walk cells\n";
     std::snprintf(line, sizeof line,
                   "    table 2: %zu slices, %zu pointers (%.1f MB); PVS %.1f ms per cell median (p95 %.1f), %.0f objects; "

@@ -181,16 +181,29 @@ Runner add_report(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1000.0));
   sub->add_option("--slice-thickness", f->slice_table_options.slicing.slice_m,
-                  "Target slice thickness of --slice-table, metres (the paper's slices are as wide as its view cells); an object "
-                  "needing more than 32 slices on an axis gets thicker ones")
+                  "Target slice thickness of --slice-table, metres (the paper makes its slices as wide as its view cells, or "
+                  "adapted to the buildings); an object needing more than --slice-max-slices on an axis gets thicker ones")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1000.0));
+  sub->add_option("--slice-max-slices", f->slice_table_options.slicing.max_slices,
+                  "Most slices per axis of an object in --slice-table (a larger object gets thicker slices on that axis; "
+                  "indices are signed bytes)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 127));
   sub->add_option("--slice-oracle-cells", f->slice_table_options.oracle_cells,
                   "Cells of --slice-table checked by the oracle from their corners, edge midpoints and centre")
       ->capture_default_str()
       ->check(CLI::Range(0, 100000));
   sub->add_option("--slice-voxel", f->slice_table_options.voxel_m,
                   "Voxel side of --slice-table's voxel erosion, metres (a wall recedes by the cell's half-side and up to one voxel)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 100.0));
+  sub->add_option("--slice-zoom", f->slice_table_options.culling.zoom_resolution,
+                  "Pixels per side of --slice-table's zoomed view on one candidate (finer: tighter, slower)")
+      ->capture_default_str()
+      ->check(CLI::Range(8, 4096));
+  sub->add_option("--slice-delta", f->slice_table_options.culling.delta,
+                  "Step of --slice-table's hidden heights (the paper's delta), metres")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 100.0));
   sub->add_option("--slice-oracle-eyes", f->slice_table_options.oracle_eyes_per_side,

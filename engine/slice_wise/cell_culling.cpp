@@ -109,13 +109,16 @@ std::vector<SlicePart> slice_parts(const SliceWiseObject& o, const MeshObject& m
 // its own), or by horizontal slice j whole. Turned-away faces are hidden by the object itself.
 // A triangle is dropped when either vertical axis shows it hidden; a form that keeps every
 // triangle left keeps every visible one.
+// Without `facing` (empty), every triangle faces the cell and each slice is one part, its hidden
+// height the slice's own (`slice_height`).
 std::vector<char> possibly_visible(const SliceWiseObject& o, const MeshObject& m, const std::vector<char>& facing,
                                    const std::array<std::vector<std::map<int, double>>, 2>& part_height,
-                                   const std::vector<char>& z_hidden) {
+                                   const SliceOcclusion& slice_height) {
+  const std::vector<char>& z_hidden = slice_height.z_hidden;
   const std::size_t nz = o.slices.axes[2].count();
   std::vector<char> keep(o.ranges.size(), 0);
   for (std::size_t t = 0; t < keep.size(); ++t) {
-    if (!facing[t]) continue;
+    if (!facing.empty() && !facing[t]) continue;
     const auto& r = o.ranges[t];
     double top_t = -std::numeric_limits<double>::infinity();
     for (std::uint32_t v : m.triangles[t]) top_t = std::max(top_t, m.vertices[v].z);
@@ -124,9 +127,13 @@ std::vector<char> possibly_visible(const SliceWiseObject& o, const MeshObject& m
     for (std::size_t a = 0; a < 2 && !hidden; ++a) {
       bool all = true;
       for (std::size_t i = r[2 * a]; i <= r[2 * a + 1] && all; ++i) {
-        const auto& parts = part_height[a];
-        const auto it = i < parts.size() ? parts[i].find(part_key(r, a)) : std::map<int, double>::const_iterator{};
-        const double h = i < parts.size() && it != parts[i].end() ? it->second : -1.0;
+        double h = -1.0;
+        if (facing.empty()) {
+          if (i < slice_height.hidden_height[a].size()) h = slice_height.hidden_height[a][i];
+        } else if (i < part_height[a].size()) {
+          const auto it = part_height[a][i].find(part_key(r, a));
+          if (it != part_height[a][i].end()) h = it->second;
+        }
         for (std::size_t j = r[4]; j <= r[5] && all; ++j) {
           if (j < z_hidden.size() && z_hidden[j]) continue;
           const double top = j < nz ? std::min(top_t, horizontal_slice_top(o, j)) : top_t;
@@ -316,12 +323,12 @@ CellPvs CellCuller::cull(Vec3 centre) {
           occ.z_hidden.push_back(std::all_of(parts.begin(), parts.end(), [&](const SlicePart& p) { return zoom_hidden(p.box, stats); }) ? 1 : 0);
         }
         v.choice = choose_slices(obj, occ);
-        if (!facing.empty()) {
+        if (mesh && (!facing.empty() || options_.both_vertical_axes)) {
           // Algorithm 3 over triangles: the best form keeping every triangle not shown hidden
           // drops at least what the rectangle of hidden cells drops (its triangles are all shown
           // hidden), more where a long triangle's visible part kept a cell it reaches into.
-          const std::vector<char> keep = possibly_visible(obj, *mesh, facing, part_height, occ.z_hidden);
-          SliceChoice by_triangle = best_form_keeping(obj, keep);
+          const std::vector<char> keep = possibly_visible(obj, *mesh, facing, part_height, occ);
+          SliceChoice by_triangle = best_form_keeping(obj, keep, options_.both_vertical_axes);
           if (by_triangle.dropped > v.choice.dropped) {
             by_triangle.any_hidden_cell = true;
             by_triangle.cell_dropped = std::max(v.choice.cell_dropped, static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 0)));

@@ -60,6 +60,10 @@ struct CellCullingOptions {
   // dropped whatever surrounds them; a ray can meet one only where it grazes the edge it shares
   // with a facing face, which draws that point (oracle/witness_cover.hpp).
   bool turned_away_faces = true;
+  // cullcheck's variant of Algorithm 3 (slice_rectangle.hpp best_form_keeping): a rectangle of
+  // hidden slices on each vertical axis at once, in the same three bytes. The paper draws from the
+  // maximally occluded axis only.
+  bool both_vertical_axes = false;
 };
 
 struct ObjectVisibility {

@@ -25,7 +25,8 @@
 
 namespace cullcheck::slice_wise {
 
-enum class VisibleForm : std::uint8_t { complete, l_shaped, vertical, horizontal };
+// two_sided: cullcheck's variant, a rectangle on each vertical axis (best_form_keeping).
+enum class VisibleForm : std::uint8_t { complete, l_shaped, vertical, horizontal, two_sided };
 std::string_view visible_form_name(VisibleForm f);
 
 struct SliceOcclusion {
@@ -58,6 +59,12 @@ inline constexpr double kHeightSlack = 1e-9;
 // cell_dropped: the triangles none of whose cells (on the better vertical axis) holds a kept
 // triangle, what a per-cell record could drop; equal to `dropped` when the kept triangles fit
 // one form (Fig. 2's premise).
-SliceChoice best_form_keeping(const SliceWiseObject& object, const std::vector<char>& keep);
+//
+// With both_axes (cullcheck's variant, not the paper's): the three bytes also hold a rectangle on
+// each vertical axis at once, from a side of x and a side of y, sharing the z index, drawn by
+// rendering_set's work axis 2. The paper draws from the maximally occluded axis only, so a
+// building seen across a corner keeps one of its two far walls; the same three bytes can drop
+// both. Every pair of rectangles is tried (3-D prefix counts per pair of sides).
+SliceChoice best_form_keeping(const SliceWiseObject& object, const std::vector<char>& keep, bool both_axes = false);
 
 }  // namespace cullcheck::slice_wise

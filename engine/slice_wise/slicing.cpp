@@ -67,17 +67,20 @@ bool slice_visible(const SlicedObject& /*object*/, const VisibilityIndices& v, i
 }
 
 std::vector<std::uint32_t> rendering_set(const SlicedObject& object, const VisibilityIndices& v) {
-  std::vector<char> drawn(object.triangle_count, 0);
-  for (int axis : {static_cast<int>(v.work_axis), 2}) {
+  // Bit a set: the triangle is in a visible slice of axis a.
+  std::vector<std::uint8_t> in_visible(object.triangle_count, 0);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis < 2 && v.work_axis != kBothVerticalAxes && axis != v.work_axis) continue;
     const AxisSlices& s = object.axes[static_cast<std::size_t>(axis)];
     for (std::size_t i = 0; i < s.count(); ++i) {
       if (!slice_visible(object, v, axis, i)) continue;
-      for (std::uint32_t k = s.begin[i]; k < s.begin[i + 1]; ++k) drawn[s.triangles[k]] = 1;
+      for (std::uint32_t k = s.begin[i]; k < s.begin[i + 1]; ++k) in_visible[s.triangles[k]] |= std::uint8_t(1u << axis);
     }
   }
+  const std::uint8_t vertical = v.work_axis == kBothVerticalAxes ? 3 : std::uint8_t(1u << v.work_axis);
   std::vector<std::uint32_t> out;
-  for (std::uint32_t t = 0; t < drawn.size(); ++t)
-    if (drawn[t]) out.push_back(t);
+  for (std::uint32_t t = 0; t < in_visible.size(); ++t)
+    if ((in_visible[t] & 4) || (in_visible[t] & vertical) == vertical) out.push_back(t);
   return out;
 }
 

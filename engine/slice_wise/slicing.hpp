@@ -48,7 +48,8 @@ struct SlicedObject {
 
 SlicedObject slice_object(const MeshObject& mesh, const SlicingOptions& options = {});
 
-// The three stored bytes (Fig. 5) and which vertical axis the rendering uses (0: x, 1: y).
+// The three stored bytes (Fig. 5) and which vertical axis the rendering uses (0: x, 1: y; 2: both,
+// cullcheck's variant, slice_rectangle.hpp).
 struct VisibilityIndices {
   std::int8_t x = 0, y = 0, z = 0;
   std::uint8_t work_axis = 0;
@@ -58,7 +59,11 @@ VisibilityIndices all_visible(const SlicedObject& object);
 
 // Whether slice `i` of `axis` is visible under `v`.
 bool slice_visible(const SlicedObject& object, const VisibilityIndices& v, int axis, std::size_t i);
-// The triangles to draw: those in a visible slice of v.work_axis or of z, sorted, each once.
+// The triangles to draw: those in a visible slice of v.work_axis or of z, sorted, each once. With
+// work_axis 2, those in a visible slice of z or in a visible slice of both x and y (a triangle
+// all of whose x slices or all of whose y slices are hidden, and all of whose z slices are, is
+// dropped); with the other vertical index all visible this is the one-axis rule.
+inline constexpr std::uint8_t kBothVerticalAxes = 2;
 std::vector<std::uint32_t> rendering_set(const SlicedObject& object, const VisibilityIndices& v);
 
 }  // namespace cullcheck::slice_wise

@@ -299,8 +299,8 @@ std::string slice_wise_section(const json& report) {
       "<section id=\"slice-wise\"><h2>Slice-wise PVS (Yilmaz &amp; Gudukbay): Tables 1-3, Fig. 7</h2>\n<p class=\"note\">"
       "View cells of " + number(value_of(t, "cell_side_m")) + " m along a street walk; occlusion queries exact about coverage "
       "(engine/slice_wise/occlusion_buffer.hpp). The paper renders 49% of the building-level triangles. 'Best form' keeps every "
-      "triangle the oracle witnessed from the checked cells with one L/vertical/horizontal form: what three bytes could do at "
-      "best. A witnessed triangle outside the kept slices fails the gate, unless the ray met it at an edge where a kept face "
+      "triangle the oracle witnessed from the checked cells with one L/vertical/horizontal form (or, on rows marked 'both "
+      "axes', one on each vertical axis at once): what three bytes could do at best. A witnessed triangle outside the kept slices fails the gate, unless the ray met it at an edge where a kept face "
       "turned to the eye draws the same point.</p>\n<table>" +
       header({"<city", "<occluders", "objects", "triangles", "cells", "PVS ms / cell", "PVS objects", "tris / frame slice-wise",
               "building-level", "share", "best form (checked cells)", "witnessed", "violations"});
@@ -308,7 +308,8 @@ std::string slice_wise_section(const json& report) {
     for (const json& r : member(c, "runs")) {
       const json &t1 = member(c, "table_1"), &t2 = member(r, "table_2"), &t3 = member(r, "table_3"), &b = member(r, "bound");
       out += "<tr>" + cell(escape(text_of(c, "city")), "name") +
-             cell(escape(text_of(r, "shrinking")) + (r.value("self_occlusion", false) ? " + self" : ""), "name") +
+             cell(escape(text_of(r, "shrinking")) + (r.value("self_occlusion", false) ? " + self" : "") +
+                      (r.value("both_vertical_axes", false) ? ", both axes" : ""), "name") +
              cell(count(value_of(t1, "objects"))) + cell(count(value_of(t1, "triangles"))) + cell(count(value_of(t2, "cells"))) +
              cell(number(value_of(t2, "pvs_ms_per_cell_median"))) + cell(number(value_of(t2, "pvs_objects_median"))) +
              cell(count(value_of(t3, "slice_wise_triangles_mean"))) + cell(count(value_of(t3, "building_level_triangles_mean"))) +
