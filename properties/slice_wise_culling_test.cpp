@@ -65,9 +65,9 @@ void check_cell(Counts& counts, const oracle::Oracle& truth, const SliceWiseScen
   std::map<ObjectId, bool> cut;  // the indices drop part of the object
   std::map<ObjectId, bool> two_sided;
   for (const ObjectVisibility& ov : pvs.visible) {
-    two_sided.emplace(prepared.objects()[ov.object].id, ov.choice.form == VisibleForm::two_sided);
-    counts.two_sided += ov.choice.form == VisibleForm::two_sided;
     const SliceWiseObject& o = prepared.objects()[ov.object];
+    two_sided.emplace(o.id, ov.choice.form == VisibleForm::two_sided);
+    counts.two_sided += ov.choice.form == VisibleForm::two_sided;
     std::vector<char> k(o.triangles(), 0);
     for (std::uint32_t t : rendering_set(o.slices, ov.indices)) k[t] = 1;
     kept.emplace(o.id, std::move(k));

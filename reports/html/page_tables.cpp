@@ -300,8 +300,9 @@ std::string slice_wise_section(const json& report) {
       "View cells of " + number(value_of(t, "cell_side_m")) + " m along a street walk; occlusion queries exact about coverage "
       "(engine/slice_wise/occlusion_buffer.hpp). The paper renders 49% of the building-level triangles. 'Best form' keeps every "
       "triangle the oracle witnessed from the checked cells with one L/vertical/horizontal form (or, on rows marked 'both "
-      "axes', one on each vertical axis at once): what three bytes could do at best. A witnessed triangle outside the kept slices fails the gate, unless the ray met it at an edge where a kept face "
-      "turned to the eye draws the same point.</p>\n<table>" +
+      "axes', one on each vertical axis at once): what three bytes could do at best. A witnessed triangle outside the kept "
+      "slices fails the gate, unless the ray met it at an edge where a kept face turned to the eye draws the same point."
+      "</p>\n<table>" +
       header({"<city", "<occluders", "objects", "triangles", "cells", "PVS ms / cell", "PVS objects", "tris / frame slice-wise",
               "building-level", "share", "best form (checked cells)", "witnessed", "violations"});
   for (const json& c : member(t, "cities"))
