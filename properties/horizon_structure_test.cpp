@@ -1,6 +1,6 @@
-// Structure invariants of the occlusion horizon tree and the quadtree (design: "Structure
-// invariants"): the segment tree agrees with a plain array of bins under random raises and
-// queries, including spans that wrap at 0 / 2π, and its min/max invariant holds throughout.
+// Structure invariants of the occlusion horizon and the quadtree (design: "Structure
+// invariants"): the flat horizon agrees with a plain array of bins under random raises, queries
+// and resets, including spans that wrap at 0 / 2π, and its block min/max invariant holds throughout.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
@@ -49,10 +49,10 @@ AzimuthSpan span_from(double begin_fraction, double length_fraction) {
 }
 
 RC_GTEST_PROP(OcclusionHorizon, AgreesWithPlainBinsAndKeepsInvariants, ()) {
-  const std::uint32_t bins = 1u << *rc::gen::inRange(1, 8);
+  const std::uint32_t bins = 1u << *rc::gen::inRange(1, 10);
   OcclusionHorizon horizon(bins);
   BinModel model(bins);
-  const int steps = *rc::gen::inRange(1, 40);
+  const int steps = *rc::gen::inRange(1, 60);
   for (int step = 0; step < steps; ++step) {
     const double begin = *rc::gen::inRange(0, 1000) / 1000.0;
     const double length = *rc::gen::inRange(0, 1001) / 1000.0;
@@ -62,15 +62,27 @@ RC_GTEST_PROP(OcclusionHorizon, AgreesWithPlainBinsAndKeepsInvariants, ()) {
       horizon.raise(span, slope);
       for (std::uint32_t b = 0; b < bins; ++b)
         if (model.inside(b, span)) model.value[b] = std::max(model.value[b], slope);
+    } else if (*rc::gen::inRange(0, 20) == 0) {
+      horizon.reset();
+      std::fill(model.value.begin(), model.value.end(), -std::numeric_limits<double>::infinity());
     } else {
-      double expected = std::numeric_limits<double>::infinity();
+      double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
       for (std::uint32_t b = 0; b < bins; ++b)
-        if (model.touches(b, span)) expected = std::min(expected, model.value[b]);
-      RC_ASSERT(horizon.min_over(span) == expected);
+        if (model.touches(b, span)) lowest = std::min(lowest, model.value[b]), highest = std::max(highest, model.value[b]);
+      RC_ASSERT(horizon.min_over(span) == lowest);
+      RC_ASSERT(horizon.max_over(span) == highest);
     }
     RC_ASSERT(horizon.check_invariants() == "");
   }
   for (std::uint32_t b = 0; b < bins; ++b) RC_ASSERT(horizon.bin_value(b) == model.value[b]);
+  RC_ASSERT(horizon.bin_values() == model.value);
+  // assign() then reset(): the blocks follow the assigned bins, and reset lowers all of them.
+  horizon.assign(model.value);
+  RC_ASSERT(horizon.check_invariants() == "");
+  RC_ASSERT(horizon.bin_values() == model.value);
+  horizon.reset();
+  RC_ASSERT(horizon.check_invariants() == "");
+  RC_ASSERT(horizon.max_over({0.0, kTwoPi}) == -std::numeric_limits<double>::infinity());
 }
 
 TEST(OcclusionHorizon, WrapAroundEastIsOneInterval) {

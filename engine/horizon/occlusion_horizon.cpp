@@ -6,12 +6,68 @@
 #include <stdexcept>
 #include <string>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "core/geometry.hpp"
 
 namespace cullcheck {
 namespace {
 constexpr double kNone = -std::numeric_limits<double>::infinity();
 constexpr double kAll = std::numeric_limits<double>::infinity();
+
+// Min and max over a run of doubles, two lanes at a time. The horizon never holds NaN (raise
+// ignores it, assign turns it into −inf), so minpd/maxpd give the exact min and max, whatever
+// the order; only the sign of a zero may depend on it, which no comparison sees.
+double min_of(const double* v, std::uint32_t n) {
+  std::uint32_t i = 0;
+  double m = kAll;
+#if defined(__SSE2__)
+  __m128d a = _mm_set1_pd(kAll), b = a;
+  for (; i + 4 <= n; i += 4) {
+    a = _mm_min_pd(a, _mm_loadu_pd(v + i));
+    b = _mm_min_pd(b, _mm_loadu_pd(v + i + 2));
+  }
+  a = _mm_min_pd(a, b);
+  m = std::min(_mm_cvtsd_f64(a), _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)));
+#endif
+  for (; i < n; ++i) m = std::min(m, v[i]);
+  return m;
+}
+
+double max_of(const double* v, std::uint32_t n) {
+  std::uint32_t i = 0;
+  double m = kNone;
+#if defined(__SSE2__)
+  __m128d a = _mm_set1_pd(kNone), b = a;
+  for (; i + 4 <= n; i += 4) {
+    a = _mm_max_pd(a, _mm_loadu_pd(v + i));
+    b = _mm_max_pd(b, _mm_loadu_pd(v + i + 2));
+  }
+  a = _mm_max_pd(a, b);
+  m = std::max(_mm_cvtsd_f64(a), _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)));
+#endif
+  for (; i < n; ++i) m = std::max(m, v[i]);
+  return m;
+}
+
+void raise_all(double* v, std::uint32_t n, double slope) {
+  std::uint32_t i = 0;
+#if defined(__SSE2__)
+  const __m128d s = _mm_set1_pd(slope);
+  for (; i + 2 <= n; i += 2) _mm_storeu_pd(v + i, _mm_max_pd(_mm_loadu_pd(v + i), s));
+#endif
+  for (; i < n; ++i) v[i] = std::max(v[i], slope);
+}
+
+// log2 of the bins per block: about the square root of the bin count, so that a query's two
+// partial blocks and its whole blocks cost about the same (4096 bins: 64 blocks of 64).
+std::uint32_t block_shift_for(std::uint32_t bins) {
+  std::uint32_t log2 = 0;
+  while ((1u << log2) < bins) ++log2;
+  return (log2 + 1) / 2;
+}
 }  // namespace
 
 bool AzimuthSpan::full_circle() const { return end - begin >= kTwoPi; }
@@ -23,26 +79,23 @@ bool AzimuthSpan::valid() const {
 OcclusionHorizon::OcclusionHorizon(std::uint32_t bins) : bins_(bins), bin_width_(kTwoPi / bins) {
   if (bins < 2 || (bins & (bins - 1)) != 0 || bins > (1u << 22))
     throw std::invalid_argument("horizon bins must be a power of two in [2, 2^22], got " + std::to_string(bins));
-  min_.assign(2 * bins_, kNone);
-  max_.assign(2 * bins_, kNone);
-  pending_.assign(2 * bins_, kNone);
-  dirty_flag_.assign(2 * bins_, 0);
+  block_shift_ = block_shift_for(bins);
+  blocks_ = bins_ >> block_shift_;
+  bin_.assign(bins_, kNone);
+  lift_.assign(blocks_, kNone);
+  block_min_.assign(blocks_, kNone);
+  block_max_.assign(blocks_, kNone);
+  dirty_flag_.assign(blocks_, 0);
 }
 
 void OcclusionHorizon::reset() {
-  if (all_dirty_ || dirty_.size() > bins_ / 2) {
-    std::fill(min_.begin(), min_.end(), kNone);
-    std::fill(max_.begin(), max_.end(), kNone);
-    std::fill(pending_.begin(), pending_.end(), kNone);
-    std::fill(dirty_flag_.begin(), dirty_flag_.end(), 0);
-  } else {
-    for (std::uint32_t node : dirty_) {
-      min_[node] = max_[node] = pending_[node] = kNone;
-      dirty_flag_[node] = 0;
-    }
+  const std::uint32_t size = 1u << block_shift_;
+  for (std::uint32_t block : dirty_) {
+    std::fill_n(bin_.begin() + (static_cast<std::size_t>(block) << block_shift_), size, kNone);
+    lift_[block] = block_min_[block] = block_max_[block] = kNone;
+    dirty_flag_[block] = 0;
   }
   dirty_.clear();
-  all_dirty_ = false;
 }
 
 template <class F>
@@ -109,7 +162,7 @@ double OcclusionHorizon::min_over(const AzimuthSpan& span) {
 double OcclusionHorizon::max_over(const AzimuthSpan& span) {
   double m = kNone;
   const bool read =
-      for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::max(m, max_node(1, 0, bins_ - 1, a, b)); });
+      for_each_range(span, /*inner=*/false, [&](std::uint32_t a, std::uint32_t b) { m = std::max(m, max_bins(a, b)); });
   return read ? m : kAll;
 }
 
@@ -117,25 +170,27 @@ bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) {
   return std::isfinite(max_slope) && max_slope < min_over(span);
 }
 
-double OcclusionHorizon::bin_value(std::uint32_t bin) { return min_bins(bin, bin); }
+double OcclusionHorizon::bin_value(std::uint32_t bin) { return std::max(bin_[bin], lift_[bin >> block_shift_]); }
 
 std::vector<double> OcclusionHorizon::bin_values() {
-  for (std::uint32_t node = 1; node < bins_; ++node) push_down(node);
+  std::vector<double> values(bins_);
+  for (std::uint32_t i = 0; i < bins_; ++i) values[i] = std::max(bin_[i], lift_[i >> block_shift_]);
   visits_ += bins_;
-  return {min_.begin() + bins_, min_.end()};
+  return values;
 }
 
 void OcclusionHorizon::assign(const std::vector<double>& values) {
   if (values.size() != bins_) throw std::invalid_argument("assign: expected " + std::to_string(bins_) + " bin values");
   // A NaN bin would drop out of every min and max (comparisons with NaN are false); as −inf it
   // hides nothing.
-  std::transform(values.begin(), values.end(), min_.begin() + bins_, [](double v) { return std::isnan(v) ? kNone : v; });
-  std::copy(min_.begin() + bins_, min_.end(), max_.begin() + bins_);
-  std::fill(pending_.begin(), pending_.end(), kNone);
-  all_dirty_ = true;
-  for (std::uint32_t node = bins_ - 1; node >= 1; --node) {
-    min_[node] = std::min(min_[2 * node], min_[2 * node + 1]);
-    max_[node] = std::max(max_[2 * node], max_[2 * node + 1]);
+  std::transform(values.begin(), values.end(), bin_.begin(), [](double v) { return std::isnan(v) ? kNone : v; });
+  const std::uint32_t size = 1u << block_shift_;
+  for (std::uint32_t block = 0; block < blocks_; ++block) {
+    const double* v = bin_.data() + (static_cast<std::size_t>(block) << block_shift_);
+    lift_[block] = kNone;
+    block_min_[block] = min_of(v, size);
+    block_max_[block] = max_of(v, size);
+    touch(block);
   }
   visits_ += bins_;
 }
@@ -146,77 +201,90 @@ std::uint64_t OcclusionHorizon::take_node_visits() {
   return v;
 }
 
-void OcclusionHorizon::apply(std::uint32_t node, double slope) {
-  touch(node);
-  min_[node] = std::max(min_[node], slope);
-  max_[node] = std::max(max_[node], slope);
-  pending_[node] = std::max(pending_[node], slope);
+void OcclusionHorizon::raise_block(std::uint32_t block, double slope) {
+  ++visits_;
+  if (slope <= block_min_[block]) return;  // already at least this high everywhere in it
+  touch(block);
+  lift_[block] = std::max(lift_[block], slope);
+  block_min_[block] = std::max(block_min_[block], slope);
+  block_max_[block] = std::max(block_max_[block], slope);
 }
 
-void OcclusionHorizon::push_down(std::uint32_t node) {
-  if (pending_[node] == kNone) return;
-  apply(2 * node, pending_[node]);
-  apply(2 * node + 1, pending_[node]);
-  pending_[node] = kNone;
+void OcclusionHorizon::raise_part(std::uint32_t block, std::uint32_t first, std::uint32_t last, double slope) {
+  ++visits_;
+  if (slope <= block_min_[block]) return;
+  touch(block);
+  raise_all(bin_.data() + first, last - first + 1, slope);
+  const std::uint32_t size = 1u << block_shift_;
+  block_min_[block] = std::max(min_of(bin_.data() + (static_cast<std::size_t>(block) << block_shift_), size), lift_[block]);
+  block_max_[block] = std::max(block_max_[block], slope);
+  visits_ += (last - first + 1) + size;
 }
 
 void OcclusionHorizon::raise_bins(std::uint32_t first, std::uint32_t last, double slope) {
-  raise_node(1, 0, bins_ - 1, first, last, slope);
-}
-
-double OcclusionHorizon::min_bins(std::uint32_t first, std::uint32_t last) { return min_node(1, 0, bins_ - 1, first, last); }
-
-void OcclusionHorizon::raise_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first,
-                                  std::uint32_t last, double slope) {
-  ++visits_;
-  if (slope <= min_[node]) return;  // already at least this high everywhere below
-  if (first <= lo && hi <= last) {
-    apply(node, slope);
-    return;
+  const std::uint32_t mask = (1u << block_shift_) - 1;
+  std::uint32_t block = first >> block_shift_;
+  const std::uint32_t last_block = last >> block_shift_;
+  for (; block <= last_block; ++block) {
+    const std::uint32_t lo = std::max(first, block << block_shift_), hi = std::min(last, (block << block_shift_) | mask);
+    if (lo == block << block_shift_ && hi == ((block << block_shift_) | mask))
+      raise_block(block, slope);
+    else
+      raise_part(block, lo, hi, slope);
   }
-  push_down(node);
-  const std::uint32_t mid = lo + (hi - lo) / 2;
-  if (first <= mid) raise_node(2 * node, lo, mid, first, last, slope);
-  if (last > mid) raise_node(2 * node + 1, mid + 1, hi, first, last, slope);
-  touch(node);
-  min_[node] = std::min(min_[2 * node], min_[2 * node + 1]);
-  max_[node] = std::max(max_[2 * node], max_[2 * node + 1]);
 }
 
-double OcclusionHorizon::min_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first,
-                                  std::uint32_t last) {
-  ++visits_;
-  if (first <= lo && hi <= last) return min_[node];
-  push_down(node);
-  const std::uint32_t mid = lo + (hi - lo) / 2;
-  double m = kAll;
-  if (first <= mid) m = std::min(m, min_node(2 * node, lo, mid, first, last));
-  if (last > mid) m = std::min(m, min_node(2 * node + 1, mid + 1, hi, first, last));
-  return m;
+double OcclusionHorizon::min_bins(std::uint32_t first, std::uint32_t last) {
+  const std::uint32_t mask = (1u << block_shift_) - 1;
+  const std::uint32_t first_block = first >> block_shift_, last_block = last >> block_shift_;
+  // A bin's value is max(own, lift): the min over a part of a block is max(min of own, lift).
+  auto part = [&](std::uint32_t block, std::uint32_t lo, std::uint32_t hi) {
+    visits_ += hi - lo + 1;
+    return std::max(min_of(bin_.data() + lo, hi - lo + 1), lift_[block]);
+  };
+  if (first_block == last_block) {
+    if ((first & mask) == 0 && (last & mask) == mask) return ++visits_, block_min_[first_block];
+    return part(first_block, first, last);
+  }
+  double m = (first & mask) == 0 ? (++visits_, block_min_[first_block]) : part(first_block, first, first | mask);
+  m = std::min(m, (last & mask) == mask ? (++visits_, block_min_[last_block]) : part(last_block, last & ~mask, last));
+  const std::uint32_t inner = last_block - first_block - 1;
+  visits_ += inner;
+  return std::min(m, min_of(block_min_.data() + first_block + 1, inner));
 }
 
-double OcclusionHorizon::max_node(std::uint32_t node, std::uint32_t lo, std::uint32_t hi, std::uint32_t first,
-                                  std::uint32_t last) {
-  ++visits_;
-  if (first <= lo && hi <= last) return max_[node];
-  push_down(node);
-  const std::uint32_t mid = lo + (hi - lo) / 2;
-  double m = kNone;
-  if (first <= mid) m = std::max(m, max_node(2 * node, lo, mid, first, last));
-  if (last > mid) m = std::max(m, max_node(2 * node + 1, mid + 1, hi, first, last));
-  return m;
+double OcclusionHorizon::max_bins(std::uint32_t first, std::uint32_t last) {
+  const std::uint32_t mask = (1u << block_shift_) - 1;
+  const std::uint32_t first_block = first >> block_shift_, last_block = last >> block_shift_;
+  auto part = [&](std::uint32_t block, std::uint32_t lo, std::uint32_t hi) {
+    visits_ += hi - lo + 1;
+    return std::max(max_of(bin_.data() + lo, hi - lo + 1), lift_[block]);
+  };
+  if (first_block == last_block) {
+    if ((first & mask) == 0 && (last & mask) == mask) return ++visits_, block_max_[first_block];
+    return part(first_block, first, last);
+  }
+  double m = (first & mask) == 0 ? (++visits_, block_max_[first_block]) : part(first_block, first, first | mask);
+  m = std::max(m, (last & mask) == mask ? (++visits_, block_max_[last_block]) : part(last_block, last & ~mask, last));
+  const std::uint32_t inner = last_block - first_block - 1;
+  visits_ += inner;
+  return std::max(m, max_of(block_max_.data() + first_block + 1, inner));
 }
 
 std::string OcclusionHorizon::check_invariants() const {
-  for (std::uint32_t node = 1; node < bins_; ++node) {
-    const std::uint32_t l = 2 * node, r = l + 1;
-    const double lmin = std::max(min_[l], pending_[node]), rmin = std::max(min_[r], pending_[node]);
-    const double lmax = std::max(max_[l], pending_[node]), rmax = std::max(max_[r], pending_[node]);
-    if (min_[node] != std::min(lmin, rmin))
-      return "node " + std::to_string(node) + ": min " + std::to_string(min_[node]) + " differs from its children's";
-    if (max_[node] != std::max(lmax, rmax))
-      return "node " + std::to_string(node) + ": max " + std::to_string(max_[node]) + " differs from its children's";
-    if (min_[node] > max_[node]) return "node " + std::to_string(node) + ": min above max";
+  const std::uint32_t size = 1u << block_shift_;
+  for (std::uint32_t block = 0; block < blocks_; ++block) {
+    const double* v = bin_.data() + (static_cast<std::size_t>(block) << block_shift_);
+    double lo = kAll, hi = kNone;
+    for (std::uint32_t i = 0; i < size; ++i) {
+      lo = std::min(lo, std::max(v[i], lift_[block]));
+      hi = std::max(hi, std::max(v[i], lift_[block]));
+    }
+    if (block_min_[block] != lo)
+      return "block " + std::to_string(block) + ": min " + std::to_string(block_min_[block]) + " differs from its bins'";
+    if (block_max_[block] != hi)
+      return "block " + std::to_string(block) + ": max " + std::to_string(block_max_[block]) + " differs from its bins'";
+    if (block_max_[block] != kNone && !dirty_flag_[block]) return "block " + std::to_string(block) + ": raised but not marked for reset";
   }
   return {};
 }

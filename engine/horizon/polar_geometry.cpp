@@ -21,25 +21,29 @@ namespace {
 // called twice. Empty when the eye is inside or on the polygon, or so close that the span
 // (nearly) reaches half a turn.
 std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 eye) {
+  // One pass finds whether the eye is outside (behind some edge of the counter-clockwise ring)
+  // and the extreme directions; the extremes only count once the eye is known to be outside.
   bool outside = false;
-  for (std::size_t i = 0, j = n - 1; i < n && !outside; j = i++) outside = cross(ring[i] - ring[j], eye - ring[j]) < 0.0;
-  if (!outside) return std::nullopt;
   std::size_t lo = 0, hi = 0;
   Vec2 dlo = ring[0] - eye, dhi = dlo;
   if (dlo.x == 0.0 && dlo.y == 0.0) return std::nullopt;
+  outside = cross(ring[0] - ring[n - 1], eye - ring[n - 1]) < 0.0;
   for (std::size_t i = 1; i < n; ++i) {
     const Vec2 d = ring[i] - eye;
     if (d.x == 0.0 && d.y == 0.0) return std::nullopt;
+    outside = outside || cross(ring[i] - ring[i - 1], eye - ring[i - 1]) < 0.0;
     if (cross(dlo, d) < 0.0) lo = i, dlo = d;
     if (cross(dhi, d) > 0.0) hi = i, dhi = d;
   }
+  if (!outside) return std::nullopt;
   const double width = std::atan2(cross(dlo, dhi), dot(dlo, dhi));
   if (!(width >= 0.0) || width >= kMaxSpan) return std::nullopt;
   // Cross products order directions only within half a turn: an eye on (or within rounding of)
   // an edge sees two vertices in opposite directions, and the sign between them is noise, so the
   // extremes found may leave a vertex out. Within a true span below half a turn every direction
   // is less than a quarter turn from the bisector of the extremes; one that is not betrays it.
-  const Vec2 bisector = dlo * (1.0 / length(dlo)) + dhi * (1.0 / length(dhi));
+  const double llo = length(dlo), lhi = length(dhi);
+  const Vec2 bisector = dlo * (1.0 / llo) + dhi * (1.0 / lhi);
   for (std::size_t i = 0; i < n; ++i)
     if (!(dot(ring[i] - eye, bisector) > 0.0)) return std::nullopt;
   const double begin = azimuth_of(dlo);
@@ -47,7 +51,7 @@ std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 e
   // magnitude and shrinks with the vertices' distance (angular_slack).
   const double magnitude = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(ring[lo].x), std::abs(ring[lo].y),
                                      std::abs(ring[hi].x), std::abs(ring[hi].y)});
-  const double slack = angular_slack(magnitude, std::min(length(dlo), length(dhi)));
+  const double slack = angular_slack(magnitude, std::min(llo, lhi));
   return ConvexSpan{{begin, begin + width, slack}, lo, hi};
 }
 
