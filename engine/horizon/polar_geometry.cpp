@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/camera.hpp"
+#include "engine/horizon/fast_angle.hpp"
 
 namespace cullcheck {
 namespace {
@@ -18,8 +19,8 @@ namespace {
 // The span of a convex polygon's vertices seen from an eye outside it. Every direction then
 // lies within less than half a turn, where the sign of a cross product orders directions by
 // angle, so the two extreme (tangent) vertices are found without trigonometry and atan2 is
-// called twice. Empty when the eye is inside or on the polygon, or so close that the span
-// (nearly) reaches half a turn.
+// called twice (fast_atan2: within 1e-15 rad, far inside the span's slack). Empty when the eye
+// is inside or on the polygon, or so close that the span (nearly) reaches half a turn.
 std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 eye) {
   // One pass finds whether the eye is outside (behind some edge of the counter-clockwise ring)
   // and the extreme directions; the extremes only count once the eye is known to be outside.
@@ -36,7 +37,7 @@ std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 e
     if (cross(dhi, d) > 0.0) hi = i, dhi = d;
   }
   if (!outside) return std::nullopt;
-  const double width = std::atan2(cross(dlo, dhi), dot(dlo, dhi));
+  const double width = fast_atan2(cross(dlo, dhi), dot(dlo, dhi));
   if (!(width >= 0.0) || width >= kMaxSpan) return std::nullopt;
   // Cross products order directions only within half a turn: an eye on (or within rounding of)
   // an edge sees two vertices in opposite directions, and the sign between them is noise, so the
@@ -46,7 +47,7 @@ std::optional<ConvexSpan> span_of_convex(const Vec2* ring, std::size_t n, Vec2 e
   const Vec2 bisector = dlo * (1.0 / llo) + dhi * (1.0 / lhi);
   for (std::size_t i = 0; i < n; ++i)
     if (!(dot(ring[i] - eye, bisector) > 0.0)) return std::nullopt;
-  const double begin = azimuth_of(dlo);
+  const double begin = fast_azimuth(dlo);
   // Both ends are azimuths of tangent vertices: their rounding grows with the coordinates'
   // magnitude and shrinks with the vertices' distance (angular_slack).
   const double magnitude = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(ring[lo].x), std::abs(ring[lo].y),
