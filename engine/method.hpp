@@ -83,6 +83,9 @@ struct MethodOptions {
   double delta_radius = 0.5;  // plan distance from the anchor eye, metres (ε)
   double delta_height = 0.5;  // vertical distance from the anchor eye, metres
   double delta_turn = 0.05;   // |Δyaw| + |Δpitch| + |Δroll| from the anchor camera, radians
+  // Certify the next motion region ahead of the walk on a second thread while frames are
+  // answered from the current one; the same PVS either way (delta_horizon/guarded_delta_horizon.hpp).
+  bool delta_prefetch = true;
   // On-line image-space culling (engine/online_image_space/): Δ, s, ρ, D, V, R, ...
   OnlineCullingOptions online;
 };

@@ -301,7 +301,8 @@ nlohmann::json method_options_json(const MethodOptions& o) {
           {"quadtree_leaf_size", o.quadtree_leaf_size},
           {"delta_radius", o.delta_radius},
           {"delta_height", o.delta_height},
-          {"delta_turn", o.delta_turn}};
+          {"delta_turn", o.delta_turn},
+          {"delta_prefetch", o.delta_prefetch}};
 }
 
 nlohmann::json without_timings(const nlohmann::json& j) {

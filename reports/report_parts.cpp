@@ -74,6 +74,7 @@ MethodOptions method_options_from(const json& j) {
   o.delta_radius = j.at("delta_radius").get<double>();
   o.delta_height = j.at("delta_height").get<double>();
   o.delta_turn = j.at("delta_turn").get<double>();
+  o.delta_prefetch = j.value("delta_prefetch", true);  // absent before issue 17
   return o;
 }
 

@@ -189,6 +189,8 @@ void MethodFlags::add(CLI::App& app) {
   app.add_option("--delta-turn", options.delta_turn, "Guarded ΔH: turn (rad, |Δyaw|+|Δpitch|+|Δroll|) the region allows")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.5));
+  app.add_flag("--delta-no-prefetch{false}", options.delta_prefetch,
+               "Guarded ΔH: certify the next motion region on the critical path, not ahead on a second thread (same PVS)");
   OnlineCullingOptions& o = options.online;
   app.add_option("--online-shrink", o.shrink_pixels, "On-line image-space culling: Δ, pixels the occluders' image is eroded by (plus one)")
       ->capture_default_str()
@@ -239,6 +241,7 @@ std::string MethodFlags::replay_flags() const {
   if (options.delta_radius != d.delta_radius) out << " --delta-radius " << text(options.delta_radius);
   if (options.delta_height != d.delta_height) out << " --delta-height " << text(options.delta_height);
   if (options.delta_turn != d.delta_turn) out << " --delta-turn " << text(options.delta_turn);
+  if (options.delta_prefetch != d.delta_prefetch) out << " --delta-no-prefetch";
   if (o.shrink_pixels != od.shrink_pixels) out << " --online-shrink " << o.shrink_pixels;
   if (o.mask_size != od.mask_size) out << " --online-mask-size " << o.mask_size;
   if (o.leaf_size != od.leaf_size) out << " --online-leaf-size " << o.leaf_size;

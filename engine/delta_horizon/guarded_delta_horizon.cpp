@@ -13,7 +13,12 @@ GuardedDeltaHorizonCulling::GuardedDeltaHorizonCulling(const Scene& scene, const
       quadtree_(scene, options.quadtree_leaf_size),
       horizon_(options.horizon_bins),
       final_(options.horizon_bins),
-      certificate_(scene, quadtree_, options.horizon_bins) {}
+      first_(scene, quadtree_, options.horizon_bins),
+      second_(scene, quadtree_, options.horizon_bins) {}
+
+GuardedDeltaHorizonCulling::~GuardedDeltaHorizonCulling() {
+  if (next_.valid()) next_.wait();
+}
 
 CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   const auto start = std::chrono::steady_clock::now();
@@ -23,19 +28,44 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     // The region is centred ahead of the eye, along its last plan step (0.9 ε ahead, so this
     // camera is inside): walking on, the eye crosses the whole disc before the guard fires again.
     Camera anchor = camera;
+    Vec2 direction{0.0, 0.0};
     if (last_camera_) {
       const Vec2 step = plan(camera.position) - plan(last_camera_->position);
       const double l = length(step);
       if (l > 0.0 && l < options_.delta_radius) {
-        const Vec2 ahead = step * (0.9 * options_.delta_radius / l);
+        direction = step * (1.0 / l);
+        const Vec2 ahead = direction * (0.9 * options_.delta_radius);
         anchor.position = {camera.position.x + ahead.x, camera.position.y + ahead.y, camera.position.z};
       }
     }
-    region_ = MotionRegion{anchor, options_.delta_radius, options_.delta_height, options_.delta_turn};
-    certificate_.certify(*region_, stats);
+    bool prefetched = false;
+    if (next_.valid()) {
+      next_.get();  // rethrows what the thread threw
+      if (next_region_->contains(camera)) {
+        std::swap(current_, spare_);
+        region_ = *next_region_;
+        stats = next_stats_;
+        prefetched = true;
+        ++prefetch_hits_;
+      }
+    }
+    if (!prefetched) {
+      region_ = MotionRegion{anchor, options_.delta_radius, options_.delta_height, options_.delta_turn};
+      current_->certify(*region_, stats);
+    }
     stats.guard_fires = 1;
     order_.clear();
-    for (std::uint32_t b : certificate_.swept()) order_.push_back({0.0, b});
+    for (std::uint32_t b : current_->swept()) order_.push_back({0.0, b});
+    // Next: where re-anchoring on a straight walk would put the region, 1.9 ε on from this one's
+    // centre (the eye leaves this disc about ε ahead of the centre and anchors 0.9 ε beyond).
+    if (options_.delta_prefetch && (direction.x != 0.0 || direction.y != 0.0)) {
+      Camera next = camera;
+      const Vec2 on = plan(region_->anchor.position) + direction * (1.9 * options_.delta_radius);
+      next.position = {on.x, on.y, camera.position.z};
+      next_region_ = MotionRegion{next, options_.delta_radius, options_.delta_height, options_.delta_turn};
+      next_stats_ = CullStatistics{};
+      next_ = std::async(std::launch::async, [this] { spare_->certify(*next_region_, next_stats_); });
+    }
   }
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
@@ -55,7 +85,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   for (const auto& [distance, b] : order_) {
     pending.merge_nearer_than(distance, horizon_, stats);
     const Building& building = scene_.buildings[b];
-    if (certificate_.certainly_visible(b)) {
+    if (current_->certainly_visible(b)) {
       spans.clear();
       for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
     } else {
@@ -68,9 +98,9 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     queue_shadows(pending, ShadowRule::conservative, building, eye, distance, unclipped, spans);
   }
   stats.horizon_nodes += horizon_.take_node_visits();
-  stats.items_skipped = certificate_.visible().size() + certificate_.hidden_count();
+  stats.items_skipped = current_->visible().size() + current_->hidden_count();
 
-  last_pvs_ = certificate_.visible();
+  last_pvs_ = current_->visible();
   last_pvs_.insert(last_pvs_.end(), found.begin(), found.end());
   result.pvs.reserve(last_pvs_.size());
   for (std::uint32_t b : last_pvs_) result.pvs.push_back(scene_.buildings[b].id);

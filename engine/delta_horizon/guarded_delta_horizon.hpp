@@ -14,12 +14,21 @@
 //  - a camera outside the region (moved more than `delta_radius`/`delta_height`, turned more
 //    than `delta_turn`, other field of view or clip planes) re-anchors the region at itself:
 //    the guard fires, and the frame costs a certificate sweep on top of its own.
+// Prefetch (MethodOptions::delta_prefetch, issue 17): right after re-anchoring, a second thread
+// certifies the region the walk will need next (centred 1.9 ε further along the last step,
+// where re-anchoring on a straight walk would put it). When the guard fires and that region holds
+// the camera, the frame takes it instead of certifying on the critical path; otherwise it waits
+// for the thread and certifies as before. Which certificate is used depends only on the camera
+// path, never on timing, so statistics are as deterministic as the PVS, which is OH(OS)'s
+// either way. The certificate's work is counted in the frame that takes it (cells, buildings,
+// horizon entries), and its wall time on the other core is not in cull_ms.
 // horizon() materialises the horizon OH(OS) would leave (every visible building's shadows) on
 // demand; the per-frame sweep only builds it where uncertain buildings need it.
 // Statistics: items_skipped counts buildings decided without a test; guard_fires is 1 on
 // re-anchoring.
 #pragma once
 
+#include <future>
 #include <optional>
 
 #include "engine/delta_horizon/motion_region.hpp"
@@ -32,6 +41,10 @@ namespace cullcheck {
 class GuardedDeltaHorizonCulling final : public CullingMethod {
  public:
   GuardedDeltaHorizonCulling(const Scene& scene, const MethodOptions& options = {});
+  ~GuardedDeltaHorizonCulling() override;
+  // current_ and spare_ point into this object.
+  GuardedDeltaHorizonCulling(const GuardedDeltaHorizonCulling&) = delete;
+  GuardedDeltaHorizonCulling& operator=(const GuardedDeltaHorizonCulling&) = delete;
   std::string name() const override { return "delta_h_guarded"; }
   bool claims_conservative() const override { return true; }
   bool incremental() const override { return true; }
@@ -39,15 +52,23 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
 
   // H(t) as OH(OS) would leave it after the last query (built on demand).
   OcclusionHorizon& horizon();
-  const RegionCertificate& certificate() const { return certificate_; }
+  const RegionCertificate& certificate() const { return *current_; }
+  // Re-anchorings answered by the prefetched certificate, since construction.
+  std::uint64_t prefetch_hits() const { return prefetch_hits_; }
 
  private:
   const Scene& scene_;
   MethodOptions options_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_, final_;
-  RegionCertificate certificate_;
+  RegionCertificate first_, second_;
+  RegionCertificate* current_ = &first_;
+  RegionCertificate* spare_ = &second_;  // the prefetch thread's while next_ is pending
   std::optional<MotionRegion> region_;
+  std::optional<MotionRegion> next_region_;
+  CullStatistics next_stats_;
+  std::uint64_t prefetch_hits_ = 0;
+  std::future<void> next_;  // certifies next_region_ into *spare_ (declared last: joined first)
   std::optional<Camera> last_camera_;
   std::vector<std::uint32_t> last_pvs_;  // scene indices
   std::vector<std::pair<double, std::uint32_t>> order_;  // swept buildings by distance
