@@ -23,7 +23,7 @@ namespace cullcheck {
 struct CullStatistics {
   std::uint64_t cells_tested = 0;       // quadtree cells tested against frustum / horizon
   std::uint64_t buildings_tested = 0;   // buildings tested individually
-  std::uint64_t horizon_nodes = 0;      // horizon tree nodes visited (queries + updates)
+  std::uint64_t horizon_nodes = 0;      // horizon entries (bins and blocks) read or written
   std::uint64_t occluders_applied = 0;  // CVP shadows merged into the horizon
   std::uint64_t items_skipped = 0;      // cells and buildings skipped untested (ΔH: known hidden)
   std::uint64_t guard_fires = 0;        // ΔH: 1 when this frame fell back to a full recompute

@@ -12,7 +12,7 @@
 //     the openings are tested, new visible buildings join the PVS and raise H(t+1) and ΔH;
 //  5) bins that were outside the view at t start at +inf in H(t), so after a turn they are
 //     openings and what entered the view is tested.
-// Representation: the horizon is the segment tree of OH(OS) (O(log bins) queries and raises);
+// Representation: the horizon is OH(OS)'s (bins in blocks with block min/max and lazy raises);
 // ΔH is computed by one pass over the bins, which is what the thesis's linked list is for.
 //
 // Claim (as published): conservative, like OH(OS). cullcheck refutes it (the lateral fuzzer in

@@ -64,9 +64,9 @@ inline double screen_slack(double rounding) {
   return kScreenSlack + 4.0 * std::numeric_limits<double>::epsilon() * rounding;
 }
 
-// H(x), the occlusion horizon over the view plane's x range: the OcclusionHorizon segment tree
-// (min/max per node, lazy raises; ch. 3.1.1, Fig. 3.2) with its bins laid over the screen instead
-// of the circle of azimuths. Bins 0 and bins−1 are margins standing for everything left and right
+// H(x), the occlusion horizon over the view plane's x range: the OcclusionHorizon (bins in
+// blocks with min/max and lazy raises; ch. 3.1.1, Fig. 3.2's tree flattened) with its bins laid
+// over the screen instead of the circle of azimuths. Bins 0 and bins−1 are margins standing for everything left and right
 // of the screen and stay +inf (hidden); the screen [−half_width, +half_width] is spread over
 // bins 1 .. bins−2, and every span is clamped into the margins, so no span ever wraps around.
 // Same rounding as OH(OS): shadows raise only bins wholly inside their (shrunk) range, tests read
