@@ -234,41 +234,36 @@ void OcclusionHorizon::raise_bins(std::uint32_t first, std::uint32_t last, doubl
   }
 }
 
-double OcclusionHorizon::min_bins(std::uint32_t first, std::uint32_t last) {
-  const std::uint32_t mask = (1u << block_shift_) - 1;
-  const std::uint32_t first_block = first >> block_shift_, last_block = last >> block_shift_;
-  // A bin's value is max(own, lift): the min over a part of a block is max(min of own, lift).
-  auto part = [&](std::uint32_t block, std::uint32_t lo, std::uint32_t hi) {
-    visits_ += hi - lo + 1;
-    return std::max(min_of(bin_.data() + lo, hi - lo + 1), lift_[block]);
+namespace {
+// The min (or max) over bins [first, last] of a flat horizon: `run` folds a run of doubles and
+// `pick` two values. A bin's value is max(own, lift), so over part of a block the fold is
+// max(fold of own values, lift) for either; whole blocks read their summary `block_value`.
+template <class Run, class Pick>
+double fold_bins(const double* bins, const double* lift, const double* block_value, std::uint32_t shift, std::uint32_t first,
+                 std::uint32_t last, std::uint64_t& visits, Run run, Pick pick) {
+  const std::uint32_t mask = (1u << shift) - 1;
+  const std::uint32_t first_block = first >> shift, last_block = last >> shift;
+  auto block_part = [&](std::uint32_t block, std::uint32_t lo, std::uint32_t hi) {
+    if ((lo & mask) == 0 && (hi & mask) == mask) return ++visits, block_value[block];
+    visits += hi - lo + 1;
+    return std::max(run(bins + lo, hi - lo + 1), lift[block]);
   };
-  if (first_block == last_block) {
-    if ((first & mask) == 0 && (last & mask) == mask) return ++visits_, block_min_[first_block];
-    return part(first_block, first, last);
-  }
-  double m = (first & mask) == 0 ? (++visits_, block_min_[first_block]) : part(first_block, first, first | mask);
-  m = std::min(m, (last & mask) == mask ? (++visits_, block_min_[last_block]) : part(last_block, last & ~mask, last));
+  if (first_block == last_block) return block_part(first_block, first, last);
+  const double ends = pick(block_part(first_block, first, first | mask), block_part(last_block, last & ~mask, last));
   const std::uint32_t inner = last_block - first_block - 1;
-  visits_ += inner;
-  return std::min(m, min_of(block_min_.data() + first_block + 1, inner));
+  visits += inner;
+  return pick(ends, run(block_value + first_block + 1, inner));
+}
+}  // namespace
+
+double OcclusionHorizon::min_bins(std::uint32_t first, std::uint32_t last) {
+  return fold_bins(bin_.data(), lift_.data(), block_min_.data(), block_shift_, first, last, visits_, min_of,
+                   [](double a, double b) { return std::min(a, b); });
 }
 
 double OcclusionHorizon::max_bins(std::uint32_t first, std::uint32_t last) {
-  const std::uint32_t mask = (1u << block_shift_) - 1;
-  const std::uint32_t first_block = first >> block_shift_, last_block = last >> block_shift_;
-  auto part = [&](std::uint32_t block, std::uint32_t lo, std::uint32_t hi) {
-    visits_ += hi - lo + 1;
-    return std::max(max_of(bin_.data() + lo, hi - lo + 1), lift_[block]);
-  };
-  if (first_block == last_block) {
-    if ((first & mask) == 0 && (last & mask) == mask) return ++visits_, block_max_[first_block];
-    return part(first_block, first, last);
-  }
-  double m = (first & mask) == 0 ? (++visits_, block_max_[first_block]) : part(first_block, first, first | mask);
-  m = std::max(m, (last & mask) == mask ? (++visits_, block_max_[last_block]) : part(last_block, last & ~mask, last));
-  const std::uint32_t inner = last_block - first_block - 1;
-  visits_ += inner;
-  return std::max(m, max_of(block_max_.data() + first_block + 1, inner));
+  return fold_bins(bin_.data(), lift_.data(), block_max_.data(), block_shift_, first, last, visits_, max_of,
+                   [](double a, double b) { return std::max(a, b); });
 }
 
 std::string OcclusionHorizon::check_invariants() const {
