@@ -17,38 +17,40 @@ namespace {
 constexpr double kNone = -std::numeric_limits<double>::infinity();
 constexpr double kAll = std::numeric_limits<double>::infinity();
 
-// Min and max over a run of doubles, two lanes at a time. The horizon never holds NaN (raise
-// ignores it, assign turns it into −inf), so minpd/maxpd give the exact min and max, whatever
-// the order; only the sign of a zero may depend on it, which no comparison sees.
-double min_of(const double* v, std::uint32_t n) {
-  std::uint32_t i = 0;
-  double m = kAll;
+// The two folds a horizon query needs, each with its identity, its pick of two values and (with
+// SSE2) of two lanes of two. The horizon never holds NaN (raise ignores it, assign turns it into
+// −inf), so minpd/maxpd give the exact min and max, whatever the order; only the sign of a zero
+// may depend on it, which no comparison sees.
+struct MinFold {
+  static constexpr double kIdentity = kAll;
+  static double pick(double a, double b) { return std::min(a, b); }
 #if defined(__SSE2__)
-  __m128d a = _mm_set1_pd(kAll), b = a;
-  for (; i + 4 <= n; i += 4) {
-    a = _mm_min_pd(a, _mm_loadu_pd(v + i));
-    b = _mm_min_pd(b, _mm_loadu_pd(v + i + 2));
-  }
-  a = _mm_min_pd(a, b);
-  m = std::min(_mm_cvtsd_f64(a), _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)));
+  static __m128d lanes(__m128d a, __m128d b) { return _mm_min_pd(a, b); }
 #endif
-  for (; i < n; ++i) m = std::min(m, v[i]);
-  return m;
-}
+};
+struct MaxFold {
+  static constexpr double kIdentity = kNone;
+  static double pick(double a, double b) { return std::max(a, b); }
+#if defined(__SSE2__)
+  static __m128d lanes(__m128d a, __m128d b) { return _mm_max_pd(a, b); }
+#endif
+};
 
-double max_of(const double* v, std::uint32_t n) {
+// Fold over a run of doubles, four at a time in two SSE2 registers.
+template <class Fold>
+double fold_run(const double* v, std::uint32_t n) {
   std::uint32_t i = 0;
-  double m = kNone;
+  double m = Fold::kIdentity;
 #if defined(__SSE2__)
-  __m128d a = _mm_set1_pd(kNone), b = a;
+  __m128d a = _mm_set1_pd(Fold::kIdentity), b = a;
   for (; i + 4 <= n; i += 4) {
-    a = _mm_max_pd(a, _mm_loadu_pd(v + i));
-    b = _mm_max_pd(b, _mm_loadu_pd(v + i + 2));
+    a = Fold::lanes(a, _mm_loadu_pd(v + i));
+    b = Fold::lanes(b, _mm_loadu_pd(v + i + 2));
   }
-  a = _mm_max_pd(a, b);
-  m = std::max(_mm_cvtsd_f64(a), _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)));
+  a = Fold::lanes(a, b);
+  m = Fold::pick(_mm_cvtsd_f64(a), _mm_cvtsd_f64(_mm_unpackhi_pd(a, a)));
 #endif
-  for (; i < n; ++i) m = std::max(m, v[i]);
+  for (; i < n; ++i) m = Fold::pick(m, v[i]);
   return m;
 }
 
@@ -188,8 +190,8 @@ void OcclusionHorizon::assign(const std::vector<double>& values) {
   for (std::uint32_t block = 0; block < blocks_; ++block) {
     const double* v = bin_.data() + (static_cast<std::size_t>(block) << block_shift_);
     lift_[block] = kNone;
-    block_min_[block] = min_of(v, size);
-    block_max_[block] = max_of(v, size);
+    block_min_[block] = fold_run<MinFold>(v, size);
+    block_max_[block] = fold_run<MaxFold>(v, size);
     touch(block);
   }
   visits_ += bins_;
@@ -216,7 +218,7 @@ void OcclusionHorizon::raise_part(std::uint32_t block, std::uint32_t first, std:
   touch(block);
   raise_all(bin_.data() + first, last - first + 1, slope);
   const std::uint32_t size = 1u << block_shift_;
-  block_min_[block] = std::max(min_of(bin_.data() + (static_cast<std::size_t>(block) << block_shift_), size), lift_[block]);
+  block_min_[block] = std::max(fold_run<MinFold>(bin_.data() + (static_cast<std::size_t>(block) << block_shift_), size), lift_[block]);
   block_max_[block] = std::max(block_max_[block], slope);
   visits_ += (last - first + 1) + size;
 }
@@ -235,35 +237,33 @@ void OcclusionHorizon::raise_bins(std::uint32_t first, std::uint32_t last, doubl
 }
 
 namespace {
-// The min (or max) over bins [first, last] of a flat horizon: `run` folds a run of doubles and
-// `pick` two values. A bin's value is max(own, lift), so over part of a block the fold is
-// max(fold of own values, lift) for either; whole blocks read their summary `block_value`.
-template <class Run, class Pick>
+// The min (or max) over bins [first, last] of a flat horizon. A bin's value is max(own, lift), so
+// over part of a block the fold is max(fold of own values, lift) for either; whole blocks read
+// their summary `block_value`.
+template <class Fold>
 double fold_bins(const double* bins, const double* lift, const double* block_value, std::uint32_t shift, std::uint32_t first,
-                 std::uint32_t last, std::uint64_t& visits, Run run, Pick pick) {
+                 std::uint32_t last, std::uint64_t& visits) {
   const std::uint32_t mask = (1u << shift) - 1;
   const std::uint32_t first_block = first >> shift, last_block = last >> shift;
   auto block_part = [&](std::uint32_t block, std::uint32_t lo, std::uint32_t hi) {
     if ((lo & mask) == 0 && (hi & mask) == mask) return ++visits, block_value[block];
     visits += hi - lo + 1;
-    return std::max(run(bins + lo, hi - lo + 1), lift[block]);
+    return std::max(fold_run<Fold>(bins + lo, hi - lo + 1), lift[block]);
   };
   if (first_block == last_block) return block_part(first_block, first, last);
-  const double ends = pick(block_part(first_block, first, first | mask), block_part(last_block, last & ~mask, last));
+  const double ends = Fold::pick(block_part(first_block, first, first | mask), block_part(last_block, last & ~mask, last));
   const std::uint32_t inner = last_block - first_block - 1;
   visits += inner;
-  return pick(ends, run(block_value + first_block + 1, inner));
+  return Fold::pick(ends, fold_run<Fold>(block_value + first_block + 1, inner));
 }
 }  // namespace
 
 double OcclusionHorizon::min_bins(std::uint32_t first, std::uint32_t last) {
-  return fold_bins(bin_.data(), lift_.data(), block_min_.data(), block_shift_, first, last, visits_, min_of,
-                   [](double a, double b) { return std::min(a, b); });
+  return fold_bins<MinFold>(bin_.data(), lift_.data(), block_min_.data(), block_shift_, first, last, visits_);
 }
 
 double OcclusionHorizon::max_bins(std::uint32_t first, std::uint32_t last) {
-  return fold_bins(bin_.data(), lift_.data(), block_max_.data(), block_shift_, first, last, visits_, max_of,
-                   [](double a, double b) { return std::max(a, b); });
+  return fold_bins<MaxFold>(bin_.data(), lift_.data(), block_max_.data(), block_shift_, first, last, visits_);
 }
 
 std::string OcclusionHorizon::check_invariants() const {
