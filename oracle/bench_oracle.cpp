@@ -10,6 +10,7 @@
 
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
+#include "oracle/embree_scene.hpp"
 #include "oracle/pixel_oracle.hpp"
 #include "oracle/ray_oracle.hpp"
 #include "oracle/tests/test_scenes.hpp"
@@ -39,6 +40,53 @@ void BM_OracleWitness(benchmark::State& state) {
   state.SetLabel(city.kind);
 }
 BENCHMARK(BM_OracleWitness)->Args({3, 1})->Args({3, 2})->Args({5, 1})->Args({5, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The oracle's rays of one query (the CLI's default city, first frame of its street walk) cast
+// again bare: Arg 0 one by one (rtcIntersect1), 1 in packets of consecutive rays
+// (EmbreeScene::cast_packet). Counter mismatched: rays whose first triangle differs between the two.
+void BM_EmbreeSingleAgainstPackets(benchmark::State& state) {
+  static const Scene scene = generators::make_city("default", 1, nlohmann::json::object());
+  static const RayOracle oracle(scene);
+  const Camera camera = generators::street_walk(scene, {}, 1).frames.front();
+  static RayLog log;
+  if (log.rays.empty()) oracle.witness(camera, SamplingOptions{}, &log);
+  const EmbreeScene& embree = oracle.embree();
+  std::vector<EmbreeHit> single(log.rays.size()), packed(log.rays.size());
+  for (std::size_t k = 0; k < log.rays.size(); ++k) single[k] = embree.cast(log.rays[k]);
+  const bool packets = state.range(0) != 0;
+  std::uint64_t rays = 0;
+  for (auto _ : state) {
+    if (packets)
+      for (std::size_t k = 0; k < log.rays.size(); k += EmbreeScene::kPacket)
+        embree.cast_packet(&log.rays[k], std::min(EmbreeScene::kPacket, log.rays.size() - k), &packed[k]);
+    else
+      for (std::size_t k = 0; k < log.rays.size(); ++k) packed[k] = embree.cast(log.rays[k]);
+    rays += log.rays.size();
+    benchmark::DoNotOptimize(packed.data());
+  }
+  // Counters: rays whose first triangle (object) differs from rtcIntersect1's, and packed hits a
+  // one-lane packet of the same ray does not give back (what a replay of a witness would see).
+  std::size_t mismatched = 0, objects = 0, lone = 0;
+  const auto& owner = embree.mesh().owner_index;
+  for (std::size_t k = 0; k < log.rays.size(); ++k) {
+    if (single[k].triangle == packed[k].triangle) continue;
+    ++mismatched;
+    objects += !single[k].hit() || !packed[k].hit() || owner[single[k].triangle] != owner[packed[k].triangle] ? 1 : 0;
+  }
+  if (packets)
+    for (std::size_t k = 0; k < log.rays.size(); ++k) {
+      EmbreeHit one;
+      embree.cast_packet(&log.rays[k], 1, &one);
+      lone += one.triangle != packed[k].triangle ? 1 : 0;
+    }
+  state.counters["mismatched_objects"] = double(objects);
+  state.counters["lone_lane_differs"] = double(lone);
+  state.counters["rays"] = double(log.rays.size());
+  state.counters["mismatched"] = double(mismatched);
+  state.counters["packet_width"] = embree.packet_width();
+  state.counters["rays_per_s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EmbreeSingleAgainstPackets)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Args: threads; 0 = the full render, 1 = the full render and a comparison with a PVS holding
 // every other object (the PVS-only rays where a culled object shows).

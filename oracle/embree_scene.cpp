@@ -1,6 +1,8 @@
 #include "oracle/embree_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -82,6 +84,61 @@ EmbreeScene::EmbreeScene(const Scene& s) : mesh_(triangulate(s)) {
   }
   rtcCommitScene(scene_);
   check_embree(device_, "scene build");
+  for (auto [property, width] : {std::pair{RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED, 16}, {RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED, 8},
+                                 {RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED, 4}})
+    if (rtcGetDeviceProperty(device_, property)) {
+      packet_width_ = width;
+      break;
+    }
+}
+
+namespace {
+
+// One packet of `Width` lanes (RTCRayHit4, 8 or 16): lanes past n are invalid.
+template <int Width, typename Packet, typename Intersect>
+void cast_lanes(RTCScene scene, FilteredContext& context, const RayLog::Ray* rays, std::size_t n, EmbreeHit* hits,
+                Intersect intersect) {
+  alignas(64) Packet p;
+  alignas(64) int valid[Width];
+  for (int i = 0; i < Width; ++i) {
+    const auto k = std::size_t(i);
+    valid[i] = k < n ? -1 : 0;
+    const RayLog::Ray& r = rays[k < n ? k : 0];
+    p.ray.org_x[i] = r.org[0], p.ray.org_y[i] = r.org[1], p.ray.org_z[i] = r.org[2];
+    p.ray.dir_x[i] = r.dir[0], p.ray.dir_y[i] = r.dir[1], p.ray.dir_z[i] = r.dir[2];
+    p.ray.tnear[i] = r.t_near, p.ray.tfar[i] = r.t_far;
+    p.ray.mask[i] = 0xFFFFFFFFu, p.ray.time[i] = 0.0f, p.ray.flags[i] = 0, p.ray.id[i] = unsigned(i);
+    p.hit.geomID[i] = p.hit.primID[i] = p.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  intersect(valid, scene, &context.context, &p);
+  for (std::size_t k = 0; k < n; ++k)
+    hits[k] = p.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? EmbreeHit{} : EmbreeHit{p.ray.tfar[k], p.hit.primID[k]};
+}
+
+}  // namespace
+
+void EmbreeScene::cast_packet(const RayLog::Ray* rays, std::size_t n, EmbreeHit* hits,
+                              const std::vector<std::uint8_t>* allowed_objects) const {
+  if (n > kPacket) throw std::logic_error("EmbreeScene::cast_packet: more than kPacket rays");
+  FilteredContext c;
+  rtcInitIntersectContext(&c.context);
+  c.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  if (allowed_objects) {
+    c.context.filter = keep_allowed_objects;
+    c.owner_index = mesh_.owner_index.data();
+    c.allowed = allowed_objects->data();
+  }
+  switch (packet_width_) {
+    case 16: return cast_lanes<16, RTCRayHit16>(scene_, c, rays, n, hits, rtcIntersect16);
+    case 8:
+      for (std::size_t k = 0; k < n; k += 8) cast_lanes<8, RTCRayHit8>(scene_, c, rays + k, std::min<std::size_t>(8, n - k), hits + k, rtcIntersect8);
+      return;
+    case 4:
+      for (std::size_t k = 0; k < n; k += 4) cast_lanes<4, RTCRayHit4>(scene_, c, rays + k, std::min<std::size_t>(4, n - k), hits + k, rtcIntersect4);
+      return;
+    default:
+      for (std::size_t k = 0; k < n; ++k) hits[k] = allowed_objects ? cast_among(rays[k], *allowed_objects) : cast(rays[k]);
+  }
 }
 
 EmbreeScene::~EmbreeScene() {

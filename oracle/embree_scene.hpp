@@ -42,6 +42,14 @@ class EmbreeScene {
 
   // The first hit of `r` in [t_near, t_far] among all triangles.
   EmbreeHit cast(const RayLog::Ray& r) const;
+  // The first hits of rays[0..n), n at most kPacket, cast as one packet (rtcIntersect16, 8 or 4,
+  // the widest this Embree supports; one by one if none). Rays from one eye toward nearby
+  // samples share most of their traversal, which a packet walks once.
+  // With `allowed_objects`, the first hits among those objects, as cast_among finds them.
+  static constexpr std::size_t kPacket = 16;
+  void cast_packet(const RayLog::Ray* rays, std::size_t n, EmbreeHit* hits,
+                   const std::vector<std::uint8_t>* allowed_objects = nullptr) const;
+  int packet_width() const { return packet_width_; }
   // The first hit among the triangles of the objects whose flag is set (indexed by object index,
   // mesh.hpp), found exactly: Embree's context filter rejects every other hit during traversal,
   // so the result is the first hit of the same ray in the scene made of those objects alone.
@@ -55,6 +63,7 @@ class EmbreeScene {
   TriangleMesh mesh_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
+  int packet_width_ = 1;
 };
 
 }  // namespace cullcheck::oracle

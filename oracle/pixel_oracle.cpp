@@ -125,12 +125,20 @@ IdImage PixelOracle::render(const Camera& camera, const std::vector<ObjectId>* o
   image.height = rays.resolution().height;
   image.ids.assign(std::size_t(image.width) * std::size_t(image.height), kNoObject);
   const std::vector<std::uint8_t> allowed = only ? allowed_objects(mesh, sorted_copy(*only)) : std::vector<std::uint8_t>{};
+  // A row's pixels in packets of neighbours, the most coherent rays there are.
   parallel_for(std::size_t(image.height), threads, 1, [&](std::size_t j) {
-    for (int i = 0; i < image.width; ++i) {
-      const WitnessRay r = rays.ray(i, int(j));
-      const RayLog::Ray f = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
-      const EmbreeHit hit = only ? embree.cast_among(f, allowed) : embree.cast(f);
-      if (hit.hit()) image.ids[j * std::size_t(image.width) + std::size_t(i)] = mesh.owner_id[hit.triangle];
+    RayLog::Ray packet[EmbreeScene::kPacket];
+    EmbreeHit hits[EmbreeScene::kPacket];
+    const std::size_t width = std::size_t(image.width), lanes = EmbreeScene::kPacket;
+    for (std::size_t first = 0; first < width; first += lanes) {
+      const std::size_t n = std::min(lanes, width - first);
+      for (std::size_t k = 0; k < n; ++k) {
+        const WitnessRay r = rays.ray(int(first + k), int(j));
+        packet[k] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
+      }
+      embree.cast_packet(packet, n, hits, only ? &allowed : nullptr);
+      for (std::size_t k = 0; k < n; ++k)
+        if (hits[k].hit()) image.ids[j * width + first + k] = mesh.owner_id[hits[k].triangle];
     }
   });
   return image;
@@ -172,11 +180,19 @@ PixelComparison PixelOracle::compare(const IdImage& full, const Camera& camera, 
   out.misdrawn_pixels = misdrawn.size();
 
   const std::vector<std::uint8_t> allowed = allowed_objects(mesh, in_pvs);
-  parallel_for(misdrawn.size(), threads, 256, [&](std::size_t k) {
-    const std::size_t p = misdrawn[k];
-    const WitnessRay r = rays.ray(int(p % std::size_t(res.width)), int(p / std::size_t(res.width)));
-    const EmbreeHit hit = embree.cast_among(to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far), allowed);
-    out.drawn.ids[p] = hit.hit() ? mesh.owner_id[hit.triangle] : kNoObject;
+  // In packets of consecutive misdrawn pixels (row-major, so mostly neighbours in a blob).
+  const std::size_t packets = (misdrawn.size() + EmbreeScene::kPacket - 1) / EmbreeScene::kPacket;
+  parallel_for(packets, threads, 16, [&](std::size_t q) {
+    RayLog::Ray packet[EmbreeScene::kPacket];
+    EmbreeHit hits[EmbreeScene::kPacket];
+    const std::size_t first = q * EmbreeScene::kPacket, n = std::min(EmbreeScene::kPacket, misdrawn.size() - first);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t p = misdrawn[first + k];
+      const WitnessRay r = rays.ray(int(p % std::size_t(res.width)), int(p / std::size_t(res.width)));
+      packet[k] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
+    }
+    embree.cast_packet(packet, n, hits, &allowed);
+    for (std::size_t k = 0; k < n; ++k) out.drawn.ids[misdrawn[first + k]] = hits[k].hit() ? mesh.owner_id[hits[k].triangle] : kNoObject;
   });
 
   for (std::uint64_t size : component_sizes(out.misdrawn_mask, res.width, res.height)) {

@@ -22,7 +22,8 @@
 // A pixel shows the object of the ray's first hit in that extent: hits before the near plane
 // are clipped (they hide nothing), and a pixel with no hit shows the background, kNoObject.
 //
-// Exactness: each pixel is one Embree ray (single precision, robust mode), so only a pixel
+// Exactness: each pixel is one Embree ray (single precision, robust mode; the full render casts
+// a row's pixels in packets of 16 neighbours, EmbreeScene::cast_packet), so only a pixel
 // centre within about 1e-7 of the scene's extent of a silhouette edge is in doubt. The PVS-only
 // buffer is exact as a first hit among the PVS's objects: Embree's context filter rejects the
 // other objects' hits during traversal (embree_scene.hpp), the same as tracing a scene made of

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,6 +37,47 @@ const TriangleMesh& RayOracle::mesh() const { return impl_->embree.mesh(); }
 const Scene& RayOracle::scene() const { return impl_->scene; }
 const EmbreeScene& RayOracle::embree() const { return impl_->embree; }
 
+namespace {
+
+// One unit of the plan (an object, or a run of stratified cells), cast and sifted on one thread:
+// its witnessing rays in ray order, at most 1 + kFurtherWitnesses per object (the merge keeps no
+// more, so later ones cannot matter), and with `triangles` the first per triangle.
+struct UnitResult {
+  std::vector<std::pair<std::uint32_t, WitnessRay>> witnesses;  // (object index, ray)
+  std::vector<std::pair<std::uint32_t, WitnessRay>> triangles;  // (triangle, ray)
+  std::vector<RayLog::Ray> log;
+  std::uint64_t rays = 0, skipped = 0;
+
+  void clear() { witnesses.clear(), triangles.clear(), log.clear(), rays = skipped = 0; }
+};
+
+// A thread's scratch: the rays of the unit in hand, and per object (and triangle) how many
+// witnesses this unit has found so far, reset through the lists of entries touched.
+struct Sifter {
+  std::vector<PlannedRay> rays;
+  SurfaceSamples samples;
+  std::vector<std::uint8_t> found;
+  std::vector<std::uint8_t> triangle_found;
+  std::vector<std::uint32_t> touched, touched_triangles;
+  PlanTally tally;
+
+  void reset() {
+    for (std::uint32_t o : touched) found[o] = 0;
+    for (std::uint32_t t : touched_triangles) triangle_found[t] = 0;
+    touched.clear(), touched_triangles.clear();
+  }
+};
+
+// Surface-sample rays of an object are cast a packet at a time between looks at whether the
+// object is witnessed enough to stop (SamplingOptions::stop_when_witnessed).
+constexpr std::size_t kEarlyOutGroup = EmbreeScene::kPacket;
+// Stratified cells per unit: a few thousand rays, so the units even out across threads.
+constexpr std::size_t kCellsPerUnit = 2048;
+// Units merged per wave: the results of one wave are held at once.
+constexpr std::size_t kWave = 1024;
+
+}  // namespace
+
 OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& options, RayLog* log,
                                 TriangleWitnesses* triangles) const {
   const auto start = Clock::now();
@@ -44,59 +87,127 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   const TriangleMesh& mesh = im.embree.mesh();
   OracleResult result;
   result.density = options;
-  RayPlan plan(im.scene, mesh, camera, options);
+  const RayPlan plan(im.scene, mesh, camera, options);
   const ViewTransform& volume = plan.cone().transform();
-  auto embree_ray_of = [&](const PlannedRay& r) { return to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far); };
+  const std::size_t objects = plan.objects(), cells = plan.cells();
+  const std::size_t units = objects + (cells + kCellsPerUnit - 1) / kCellsPerUnit;
 
-  // Chunk by chunk, in plan order: cast the chunk (each thread takes blocks and writes hits at
-  // the rays' own indices), then merge it in ray order. An object is witnessed by the first
-  // ray whose first hit lies on it and inside the view volume, whatever the thread count.
-  constexpr std::size_t kChunk = std::size_t(1) << 16, kBlock = 4096;
-  std::vector<PlannedRay> chunk;
-  std::vector<EmbreeHit> hits;
+  // Cast unit u's rays [begin, end) and keep what the merge can use. A ray is a witness of the
+  // object its first hit lies on when that hit (recomputed in double precision) is in the view
+  // volume.
+  auto sift = [&](Sifter& s, UnitResult& out, std::size_t begin, std::size_t end) {
+    RayLog::Ray packet[EmbreeScene::kPacket];
+    EmbreeHit hits[EmbreeScene::kPacket];
+    for (std::size_t first = begin; first < end; first += EmbreeScene::kPacket) {
+      const std::size_t n = std::min(EmbreeScene::kPacket, end - first);
+      for (std::size_t i = 0; i < n; ++i) {
+        const PlannedRay& r = s.rays[first + i];
+        packet[i] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
+      }
+      if (log) out.log.insert(out.log.end(), packet, packet + n);
+      im.embree.cast_packet(packet, n, hits);
+      for (std::size_t i = 0; i < n; ++i) {
+        const EmbreeHit& hit = hits[i];
+        if (!hit.hit()) continue;
+        const PlannedRay& r = s.rays[first + i];
+        const std::uint32_t owner = mesh.owner_index[hit.triangle];
+        const bool for_object = s.found[owner] <= kFurtherWitnesses;
+        const bool for_triangle = triangles && !s.triangle_found[hit.triangle];
+        if (!for_object && !for_triangle) continue;
+        const double t = im.embree.exact_t(r.origin, r.direction, hit);
+        const Vec3 hit_point = r.origin + r.direction * t;
+        if (!volume.contains(hit_point)) continue;
+        const WitnessRay w{r.origin,         r.direction, r.t_near, r.t_far, t, hit_point, r.target, hit.triangle,
+                           r.aimed_at == kNoObjectIndex ? ObjectId(0) : mesh.object_ids[r.aimed_at], r.source};
+        if (for_triangle) {
+          if (s.triangle_found[hit.triangle]++ == 0) s.touched_triangles.push_back(hit.triangle);
+          out.triangles.emplace_back(hit.triangle, w);
+        }
+        if (for_object) {
+          if (s.found[owner]++ == 0) s.touched.push_back(owner);
+          out.witnesses.emplace_back(owner, w);
+        }
+      }
+    }
+    out.rays += end - begin;
+  };
+  auto run_unit = [&](Sifter& s, std::size_t u, UnitResult& out) {
+    out.clear();
+    s.rays.clear();
+    if (u < objects) {
+      const auto index = std::uint32_t(u);
+      const std::size_t surface = plan.object_rays(index, s.rays, s.tally, s.samples);
+      // Its surface samples until the object has all the witnesses the merge keeps, then its
+      // grazing rays, which look past its silhouette at what lies behind.
+      std::size_t k = 0;
+      while (k < surface) {
+        if (options.stop_when_witnessed && !triangles && s.found[index] > kFurtherWitnesses) break;
+        const std::size_t group_end = std::min(surface, k + kEarlyOutGroup);
+        sift(s, out, k, group_end);
+        k = group_end;
+      }
+      out.skipped = surface - k;
+      sift(s, out, surface, s.rays.size());
+    } else {
+      const std::size_t first = (u - objects) * kCellsPerUnit;
+      plan.cell_rays(first, first + kCellsPerUnit, s.rays);
+      sift(s, out, 0, s.rays.size());
+    }
+    s.reset();
+  };
+
+  // Wave by wave, in plan order: the threads take units of the wave as they come free and write
+  // each unit's result in its own slot; then the slots are merged in unit order. An object is
+  // witnessed by the first ray in plan order whose first hit lies on it inside the view volume,
+  // whatever the thread count.
+  const int threads = int(std::min<std::size_t>(std::size_t(options.threads), std::max<std::size_t>(1, units)));
+  std::vector<Sifter> sifters(static_cast<std::size_t>(threads));
+  for (Sifter& s : sifters) {
+    s.found.assign(mesh.object_ids.size(), 0);
+    if (triangles) s.triangle_found.assign(mesh.triangles.size(), 0);
+  }
+  std::vector<UnitResult> slots(std::min(units, kWave));
   std::vector<std::uint8_t> witness_rays(mesh.object_ids.size(), 0);  // per object index, found so far
-  chunk.reserve(kChunk + options.max_samples_per_building);
-  while (chunk.clear(), plan.next(chunk, kChunk)) {
-    hits.assign(chunk.size(), EmbreeHit{});
-    std::atomic<std::size_t> next_block{0};
-    auto worker = [&] {
-      for (std::size_t begin; (begin = next_block.fetch_add(kBlock)) < chunk.size();) {
-        const std::size_t end = std::min(chunk.size(), begin + kBlock);
-        for (std::size_t k = begin; k < end; ++k) hits[k] = im.embree.cast(embree_ray_of(chunk[k]));
+  for (std::size_t wave = 0; wave < units; wave += kWave) {
+    const std::size_t wave_end = std::min(units, wave + kWave);
+    std::atomic<std::size_t> next_unit{wave};
+    std::exception_ptr failure;
+    std::atomic<bool> failed{false};
+    auto worker = [&](Sifter& s) {
+      try {
+        for (std::size_t u; !failed && (u = next_unit.fetch_add(1)) < wave_end;) run_unit(s, u, slots[u - wave]);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
       }
     };
-    const int threads = int(std::min<std::size_t>(std::size_t(options.threads), 1 + chunk.size() / kBlock));
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
+    for (int t = 1; t < threads && wave + std::size_t(t) < wave_end; ++t) pool.emplace_back(worker, std::ref(sifters[std::size_t(t)]));
+    worker(sifters[0]);
     for (auto& th : pool) th.join();
+    if (failure) std::rethrow_exception(failure);
 
-    for (std::size_t k = 0; k < chunk.size(); ++k) {
-      if (!hits[k].hit()) continue;
-      const std::uint32_t owner = mesh.owner_index[hits[k].triangle];
-      // The first and its further ones found (and no triangle asked for).
-      if (witness_rays[owner] > kFurtherWitnesses && !triangles) continue;
-      const PlannedRay& r = chunk[k];
-      const double t = im.embree.exact_t(r.origin, r.direction, hits[k]);
-      const Vec3 hit_point = r.origin + r.direction * t;
-      if (!volume.contains(hit_point)) continue;
-      const WitnessRay w{r.origin,         r.direction, r.t_near, r.t_far, t, hit_point, r.target, hits[k].triangle,
-                         r.aimed_at == kNoObjectIndex ? ObjectId(0) : mesh.object_ids[r.aimed_at], r.source};
-      if (triangles) triangles->emplace(hits[k].triangle, w);
-      if (witness_rays[owner] > kFurtherWitnesses) continue;
-      const ObjectId id = mesh.object_ids[owner];
-      if (witness_rays[owner]++ == 0)
-        result.witnesses.emplace(id, w);
-      else
-        result.further_witnesses[id].push_back(w);
+    for (std::size_t u = wave; u < wave_end; ++u) {
+      UnitResult& unit = slots[u - wave];
+      for (auto& [owner, w] : unit.witnesses) {
+        if (witness_rays[owner] > kFurtherWitnesses) continue;
+        const ObjectId id = mesh.object_ids[owner];
+        if (witness_rays[owner]++ == 0)
+          result.witnesses.emplace(id, w);
+        else
+          result.further_witnesses[id].push_back(w);
+      }
+      if (triangles)
+        for (auto& [triangle, w] : unit.triangles) triangles->emplace(triangle, w);  // a triangle already there keeps its ray
+      if (log) log->rays.insert(log->rays.end(), unit.log.begin(), unit.log.end());
+      result.rays_cast += unit.rays;
+      result.rays_skipped += unit.skipped;
     }
-    result.rays_cast += chunk.size();
-    if (log)
-      for (const PlannedRay& r : chunk) log->rays.push_back(embree_ray_of(r));
   }
-  result.candidates = plan.candidates();
-  result.capped_objects = plan.capped_objects();
-  result.grazing_rays = plan.grazing_rays();
+  for (const Sifter& s : sifters) {
+    result.candidates += s.tally.candidates;
+    result.capped_objects += s.tally.capped;
+    result.grazing_rays += s.tally.grazing;
+  }
   for (const auto& [id, ray] : result.witnesses) result.witnessed.push_back(id);
   result.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
@@ -149,7 +260,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> RayOracle::mutually_visible
   return out;
 }
 
-double RayOracle::bare_embree_rays_per_second(const RayLog& log, int threads, double min_seconds) const {
+double RayOracle::bare_embree_rays_per_second(const RayLog& log, int threads, double min_seconds, bool packets) const {
   if (log.rays.empty()) return 0.0;
   threads = std::max(1, threads);
   const RTCScene scene = impl_->embree.handle();
@@ -162,7 +273,15 @@ double RayOracle::bare_embree_rays_per_second(const RayLog& log, int threads, do
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       std::uint64_t hits = 0;
-      for (std::size_t k = begin; k < end; ++k) {
+      if (packets) {
+        EmbreeHit found[EmbreeScene::kPacket];
+        for (std::size_t k = begin; k < end; k += EmbreeScene::kPacket) {
+          const std::size_t n = std::min(EmbreeScene::kPacket, end - k);
+          impl_->embree.cast_packet(&log.rays[k], n, found);
+          for (std::size_t i = 0; i < n; ++i) hits += found[i].hit();
+        }
+      }
+      for (std::size_t k = begin; k < end && !packets; ++k) {
         RTCRayHit rh = embree_ray(log.rays[k]);
         rtcIntersect1(scene, &context, &rh);
         hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;

@@ -11,6 +11,12 @@
 // on the hit point recomputed in double precision on the hit triangle's plane). Rays start at the near plane (geometry nearer than it
 // is clipped, so it hides nothing) and end at the far plane, or just beyond their sample point.
 //
+// Casting (ray_oracle.cpp): the plan's units (an object's rays, or a run of stratified cells) are
+// cast on options.threads threads, 16 neighbouring rays to a packet (EmbreeScene::cast_packet),
+// and merged in plan order, so the answer does not depend on the thread count; an object's
+// surface-sample rays stop once they have found its kept witnesses (SamplingOptions::
+// stop_when_witnessed). ray_oracle_units_test holds both to the plan cast one ray at a time.
+//
 // Exactness: every witness is one concrete ray, kept so it can be replayed; it is exact up to
 // Embree's single-precision intersection (about 1e-7 of the scene's extent), which matters only
 // for rays that graze an edge: before a witness makes a violation it is re-cast in double
@@ -71,6 +77,9 @@ struct OracleResult {
   std::map<ObjectId, std::vector<WitnessRay>> further_witnesses;
   std::uint64_t rays_cast = 0;
   std::uint64_t grazing_rays = 0;           // of rays_cast: silhouette-grazing rays
+  // Surface-sample rays not cast because their object already had every witness kept
+  // (SamplingOptions::stop_when_witnessed); not in rays_cast.
+  std::uint64_t rays_skipped = 0;
   std::size_t candidates = 0;               // objects whose box may meet the view volume
   std::size_t capped_objects = 0;           // candidates whose samples hit the per-object cap
   double elapsed_seconds = 0.0;             // wall time of the whole query
@@ -117,10 +126,11 @@ class RayOracle {
   };
   Replay replay(const WitnessRay& ray, const Camera& camera) const;
 
-  // Re-casts exactly the logged rays in a bare rtcIntersect1 loop (no sample generation, no
-  // bookkeeping), repeating the log until at least `min_seconds` have passed, on `threads`
-  // threads. Gives the Embree-only rate to print next to OracleResult::rays_per_second().
-  double bare_embree_rays_per_second(const RayLog& log, int threads = 1, double min_seconds = 0.2) const;
+  // Re-casts exactly the logged rays in a bare loop (no sample generation, no bookkeeping),
+  // repeating the log until at least `min_seconds` have passed, on `threads` threads: one by one
+  // through rtcIntersect1, or with `packets` in packets of consecutive rays as witness() casts
+  // them. Gives the Embree-only rate to print next to OracleResult::rays_per_second().
+  double bare_embree_rays_per_second(const RayLog& log, int threads = 1, double min_seconds = 0.2, bool packets = false) const;
 
   // Whether the segment from `a` to `b` is clear of every object (one Embree occlusion ray over
   // exactly that segment; exact up to single precision, so only a segment grazing a wall or roof

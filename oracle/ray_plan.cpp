@@ -61,7 +61,7 @@ bool ViewCone::ray_toward(Vec3 p, PlannedRay& out, bool to_far) const {
 }
 
 RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options)
-    : scene_(scene), mesh_(mesh), camera_(camera), options_(options), cone_(camera), rng_(options.seed) {
+    : scene_(scene), mesh_(mesh), camera_(camera), options_(options), cone_(camera) {
   const int n = options.frustum_resolution;
   if (n <= 0) return;
   if (camera.omnidirectional()) {
@@ -76,28 +76,34 @@ RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& cam
   }
 }
 
-void RayPlan::plan_object(std::uint32_t index, std::vector<PlannedRay>& out) {
+std::size_t RayPlan::object_rays(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally,
+                                 SurfaceSamples& samples) const {
   const bool building = index < scene_.buildings.size();
   const Box3& bounds = building ? scene_.buildings[index].bounds : scene_.meshes[index - scene_.buildings.size()].bounds;
-  if (!cone_.transform().may_meet(bounds)) return;
-  ++candidates_;
-  const SurfaceSamples samples = building ? surface_samples(scene_.buildings[index], mesh_.roofs[index], options_)
-                                          : surface_samples(scene_.meshes[index - scene_.buildings.size()], options_);
-  capped_ += samples.capped ? 1 : 0;
+  if (!cone_.transform().may_meet(bounds)) return 0;
+  ++tally.candidates;
+  if (building)
+    surface_samples(scene_.buildings[index], mesh_.roofs[index], options_, samples);
+  else
+    surface_samples(scene_.meshes[index - scene_.buildings.size()], options_, samples);
+  tally.capped += samples.capped ? 1 : 0;
   PlannedRay ray{};
   ray.aimed_at = index;
   ray.source = RaySource::surface_sample;
+  const std::size_t before = out.size();
   for (Vec3 p : samples.points)
     if (cone_.ray_toward(p, ray)) out.push_back(ray);
+  const std::size_t surface = out.size() - before;
   if (options_.graze_offset > 0.0) {
-    if (building) plan_grazing(index, out);
-    else plan_mesh_grazing(index, out);
+    if (building) plan_grazing(index, out, tally);
+    else plan_mesh_grazing(index, out, tally);
   }
+  return surface;
 }
 
 // Rays just either side of a silhouette edge p0-p1 of object `index`, sampled along it: the
 // slivers where a float rounding error would show or hide what lies behind the edge.
-void RayPlan::graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out) {
+void RayPlan::graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out, PlanTally& tally) const {
   const ViewTransform& view = cone_.transform();
   const bool ortho = view.orthographic();
   const Vec3 eye = view.eye(), forward = view.forward();
@@ -121,14 +127,14 @@ void RayPlan::graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<Pla
     for (double sign : {-1.0, 1.0})
       if (cone_.ray_toward(p + side * (sign * offset / side_len), ray, /*to_far=*/true)) {
         out.push_back(ray);
-        ++grazing_;
+        ++tally.grazing;
       }
   }
 }
 
 // A building's silhouette: its vertical edges between a wall the eye sees and one it does not,
 // and its roof edges between the roof and a wall on the other side of the eye's view.
-void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
+void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const {
   const Building& b = scene_.buildings[index];
   const ViewTransform& view = cone_.transform();
   const bool ortho = view.orthographic();
@@ -146,15 +152,15 @@ void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
   const int roof = facing(ortho ? -forward.z : eye.z - b.height);
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 v = ring[k], next = ring[(k + 1) % n];
-    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along(index, {v.x, v.y, 0.0}, {v.x, v.y, b.height}, out);
-    if (silhouette(wall[k], roof)) graze_along(index, {v.x, v.y, b.height}, {next.x, next.y, b.height}, out);
+    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along(index, {v.x, v.y, 0.0}, {v.x, v.y, b.height}, out, tally);
+    if (silhouette(wall[k], roof)) graze_along(index, {v.x, v.y, b.height}, {next.x, next.y, b.height}, out, tally);
   }
 }
 
 // A mesh object's silhouette: its boundary edges, and the edges whose triangles do not all face
 // the eye the same way (or one is seen edge-on). Triangles are two-sided, so a facing is a side
 // of the triangle's plane, whichever way its vertices wind.
-void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out) {
+void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const {
   const std::size_t k = index - scene_.buildings.size();
   const MeshObject& m = scene_.meshes[k];
   const ViewTransform& view = cone_.transform();
@@ -169,14 +175,13 @@ void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& ou
     bool rim = e.triangles.size() == 1;
     const int first = facing_of(e.triangles[0]);
     for (std::size_t i = 1; i < e.triangles.size() && !rim; ++i) rim = silhouette(first, facing_of(e.triangles[i]));
-    if (rim || first == 0) graze_along(index, e.a, e.b, out);
+    if (rim || first == 0) graze_along(index, e.a, e.b, out, tally);
   }
 }
 
-void RayPlan::plan_cell(std::vector<PlannedRay>& out) {
-  const int i = int(cell_ % std::size_t(columns_)), j = int(cell_ / std::size_t(columns_));
-  ++cell_;
-  const double r1 = rng_.unit(), r2 = rng_.unit();
+void RayPlan::plan_cell(std::size_t cell, SplitMix64& rng, std::vector<PlannedRay>& out) const {
+  const int i = int(cell % std::size_t(columns_)), j = int(cell / std::size_t(columns_));
+  const double r1 = rng.unit(), r2 = rng.unit();
   const ViewTransform& view = cone_.transform();
   PlannedRay ray{};
   ray.origin = camera_.position;
@@ -201,13 +206,9 @@ void RayPlan::plan_cell(std::vector<PlannedRay>& out) {
   }
 }
 
-bool RayPlan::next(std::vector<PlannedRay>& out, std::size_t count) {
-  const std::size_t before = out.size();
-  const std::size_t cells = std::size_t(columns_) * std::size_t(rows_);
-  const std::size_t objects = scene_.object_count();
-  while (out.size() < count && object_ < objects) plan_object(object_++, out);
-  while (out.size() < count && cell_ < cells) plan_cell(out);
-  return out.size() > before || object_ < objects || cell_ < cells;
+void RayPlan::cell_rays(std::size_t first, std::size_t last, std::vector<PlannedRay>& out) const {
+  SplitMix64 rng = SplitMix64::at(options_.seed, 2 * std::uint64_t(first));
+  for (std::size_t c = first; c < last && c < cells(); ++c) plan_cell(c, rng, out);
 }
 
 }  // namespace cullcheck::oracle

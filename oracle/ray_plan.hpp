@@ -3,8 +3,8 @@
 // Order: candidate objects (buildings, then mesh objects) in scene order, each with its surface
 // samples in order (surface_samples.hpp) and its silhouette-grazing rays; then
 // the stratified grid over the view volume row by row, jittered by a SplitMix64 stream seeded
-// with options.seed. The plan is produced in chunks so that a query over millions of rays needs
-// memory for one chunk only. Everything here is in the oracle's own view transform
+// with options.seed. The plan is produced unit by unit (an object, or a run of cells), so that a
+// query over millions of rays needs memory for the units in flight only, on any thread. Everything here is in the oracle's own view transform
 // (view_transform.hpp), nothing in core's.
 //
 // Candidates: the objects whose box may meet the view volume by ViewTransform::may_meet, a
@@ -38,6 +38,7 @@
 #include "oracle/ray_oracle.hpp"
 #include "oracle/sampling.hpp"
 #include "oracle/splitmix64.hpp"
+#include "oracle/surface_samples.hpp"
 #include "oracle/view_transform.hpp"
 
 namespace cullcheck::oracle {
@@ -77,36 +78,42 @@ class ViewCone {
   bool orthographic_;
 };
 
+// What planning some units found; each thread keeps its own and the caller adds them up.
+struct PlanTally {
+  std::size_t candidates = 0, capped = 0;
+  std::uint64_t grazing = 0;
+};
+
+// The plan as independent units, so that any unit can be planned on any thread: the objects
+// 0..objects()-1, then the stratified cells 0..cells()-1 row-major. Concatenated in that order
+// they are the plan's rays in plan order.
 class RayPlan {
  public:
   // `mesh` is triangulate(scene): the plan samples the oracle's own roofs.
   RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options);
-  // Appends the next rays of the plan to `out` until it holds at least `count` rays or the plan
-  // is exhausted; returns false once nothing was left to append.
-  bool next(std::vector<PlannedRay>& out, std::size_t count);
-  std::size_t candidates() const { return candidates_; }
-  std::size_t capped_objects() const { return capped_; }
-  std::uint64_t grazing_rays() const { return grazing_; }
+  std::size_t objects() const { return scene_.object_count(); }
+  std::size_t cells() const { return std::size_t(columns_) * std::size_t(rows_); }
+  // Appends object `index`'s rays to `out`: its surface samples, then its grazing rays (none
+  // when its box cannot meet the view volume). Returns how many surface-sample rays lead.
+  // `samples` is scratch memory, one per thread.
+  std::size_t object_rays(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally, SurfaceSamples& samples) const;
+  // Appends the rays of stratified cells [first, last). Cell c's jitter is draws 2c and 2c + 1
+  // of the SplitMix64 stream seeded with options.seed, wherever the run starts.
+  void cell_rays(std::size_t first, std::size_t last, std::vector<PlannedRay>& out) const;
   const ViewCone& cone() const { return cone_; }
 
  private:
-  void plan_object(std::uint32_t index, std::vector<PlannedRay>& out);
-  void plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out);
-  void plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out);
-  void graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out);
-  void plan_cell(std::vector<PlannedRay>& out);
+  void plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const;
+  void plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const;
+  void graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out, PlanTally& tally) const;
+  void plan_cell(std::size_t cell, SplitMix64& rng, std::vector<PlannedRay>& out) const;
 
   const Scene& scene_;
   const TriangleMesh& mesh_;
   const Camera& camera_;
   const SamplingOptions& options_;
   ViewCone cone_;
-  std::uint32_t object_ = 0;  // next object to consider (buildings, then meshes)
-  std::size_t cell_ = 0;      // next stratified cell, row-major
   int columns_ = 0, rows_ = 0;
-  SplitMix64 rng_;
-  std::size_t candidates_ = 0, capped_ = 0;
-  std::uint64_t grazing_ = 0;
 };
 
 }  // namespace cullcheck::oracle

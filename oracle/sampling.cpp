@@ -28,6 +28,7 @@ void to_json(nlohmann::json& j, const SamplingOptions& o) {
        {"max_samples_per_building", o.max_samples_per_building},
        {"graze_offset", o.graze_offset},
        {"frustum_resolution", o.frustum_resolution},
+       {"stop_when_witnessed", o.stop_when_witnessed},
        {"seed", o.seed}};  // not threads: the answers do not depend on them (reports stay the same on any machine)
 }
 
@@ -40,6 +41,7 @@ void from_json(const nlohmann::json& j, SamplingOptions& o) {
   o.max_samples_per_building = j.value("max_samples_per_building", d.max_samples_per_building);
   o.graze_offset = j.value("graze_offset", d.graze_offset);
   o.frustum_resolution = j.value("frustum_resolution", d.frustum_resolution);
+  o.stop_when_witnessed = j.value("stop_when_witnessed", false);  // reports written before it was an option cast every ray
   o.seed = j.value("seed", d.seed);
   o.threads = j.value("threads", d.threads);
 }

@@ -85,17 +85,16 @@ struct RoofedBuilding {
   const RoofTriangles& roof;
 };
 
-std::vector<Vec3> samples_at(const RoofedBuilding& r, const SamplingOptions& o, double spacing) {
-  std::vector<Vec3> out;
+void samples_at(const RoofedBuilding& r, const SamplingOptions& o, double spacing, std::vector<Vec3>& out) {
+  out.clear();
   const Building& b = r.building;
   const std::size_t n = b.footprint.size();
   for (std::size_t k = 0; k < n; ++k) wall_samples(b.footprint[k], b.footprint[(k + 1) % n], b.height, o, spacing, out);
   for (const auto& t : r.roof) roof_samples({b.footprint[t[0]], b.footprint[t[1]], b.footprint[t[2]]}, b.height, o, spacing, out);
-  return out;
 }
 
-std::vector<Vec3> samples_at(const MeshObject& m, const SamplingOptions& o, double spacing) {
-  std::vector<Vec3> out;
+void samples_at(const MeshObject& m, const SamplingOptions& o, double spacing, std::vector<Vec3>& out) {
+  out.clear();
   for (const auto& t : m.triangles) {
     const Vec3 v[3] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]};
     const Vec3 centroid = (v[0] + v[1] + v[2]) * (1.0 / 3.0);
@@ -115,45 +114,59 @@ std::vector<Vec3> samples_at(const MeshObject& m, const SamplingOptions& o, doub
       for (std::size_t j = 1; i + j < n; ++j)
         out.push_back(v[0] + (v[1] - v[0]) * (double(i) / double(n)) + (v[2] - v[0]) * (double(j) / double(n)));
   }
-  return out;
 }
 
 // Widens the spacing until the cap holds, or until every face is at its minimum grid (spacing
 // beyond the object's largest dimension changes nothing more).
 template <class Object>
-SurfaceSamples capped_samples(const Object& object, const SamplingOptions& options, double largest) {
-  SurfaceSamples s;
+void capped_samples(const Object& object, const SamplingOptions& options, double largest, SurfaceSamples& s) {
   s.spacing_m = options.spacing_m;
-  s.points = samples_at(object, options, s.spacing_m);
-  if (s.points.size() <= options.max_samples_per_building) return s;
+  s.capped = false;
+  samples_at(object, options, s.spacing_m, s.points);
+  if (s.points.size() <= options.max_samples_per_building) return;
   // The count never grows with the spacing, so when even the coarsest spacing the loop below can
   // reach misses the cap, the loop would end there: go there at once (an object of many faces,
   // e.g. an imported model, would otherwise be sampled dozens of times over).
   double coarsest = s.spacing_m;
   while (coarsest <= largest) coarsest *= 1.25;
   if (coarsest != s.spacing_m) {
-    std::vector<Vec3> points = samples_at(object, options, coarsest);
-    if (points.size() > options.max_samples_per_building) return {std::move(points), coarsest, true};
+    std::vector<Vec3> points;
+    samples_at(object, options, coarsest, points);
+    if (points.size() > options.max_samples_per_building) {
+      s.points = std::move(points), s.spacing_m = coarsest, s.capped = true;
+      return;
+    }
   }
   while (s.points.size() > options.max_samples_per_building && s.spacing_m <= largest) {
     s.capped = true;
     s.spacing_m *= 1.25;
-    s.points = samples_at(object, options, s.spacing_m);
+    samples_at(object, options, s.spacing_m, s.points);
   }
-  return s;
 }
 
 }  // namespace
 
-SurfaceSamples surface_samples(const MeshObject& mesh, const SamplingOptions& options) {
+void surface_samples(const MeshObject& mesh, const SamplingOptions& options, SurfaceSamples& out) {
   const Box3& box = mesh.bounds;
-  return capped_samples(mesh, options, std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z}));
+  capped_samples(mesh, options, std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z}), out);
+}
+
+void surface_samples(const Building& building, const RoofTriangles& roof, const SamplingOptions& options, SurfaceSamples& out) {
+  capped_samples(RoofedBuilding{building, roof}, options,
+                 std::max({building.bounds.hi.x - building.bounds.lo.x, building.bounds.hi.y - building.bounds.lo.y, building.height}),
+                 out);
+}
+
+SurfaceSamples surface_samples(const MeshObject& mesh, const SamplingOptions& options) {
+  SurfaceSamples s;
+  surface_samples(mesh, options, s);
+  return s;
 }
 
 SurfaceSamples surface_samples(const Building& building, const RoofTriangles& roof, const SamplingOptions& options) {
-  return capped_samples(RoofedBuilding{building, roof}, options,
-                        std::max({building.bounds.hi.x - building.bounds.lo.x,
-                                  building.bounds.hi.y - building.bounds.lo.y, building.height}));
+  SurfaceSamples s;
+  surface_samples(building, roof, options, s);
+  return s;
 }
 
 }  // namespace cullcheck::oracle

@@ -43,5 +43,8 @@ using RoofTriangles = std::vector<std::array<std::uint32_t, 3>>;
 
 SurfaceSamples surface_samples(const Building& building, const RoofTriangles& roof, const SamplingOptions& options);
 SurfaceSamples surface_samples(const MeshObject& mesh, const SamplingOptions& options);
+// The same into `out`, reusing its memory (the ray plan samples one object after another).
+void surface_samples(const Building& building, const RoofTriangles& roof, const SamplingOptions& options, SurfaceSamples& out);
+void surface_samples(const MeshObject& mesh, const SamplingOptions& options, SurfaceSamples& out);
 
 }  // namespace cullcheck::oracle

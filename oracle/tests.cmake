@@ -8,6 +8,7 @@ add_executable(oracle_test
   ${CMAKE_CURRENT_LIST_DIR}/tests/oracle_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/pixel_oracle_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/ray_oracle_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/tests/ray_oracle_units_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/ray_plan_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/roof_triangulation_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/tests/view_transform_test.cpp

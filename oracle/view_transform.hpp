@@ -97,4 +97,20 @@ class ViewTransform {
   double tan_h_ = 0.0, tan_v_ = 0.0;  // perspective half-angle tangents
 };
 
+// Inline: the ray oracle asks it once per ray it plans.
+inline bool ViewTransform::extent(Vec3 d, double& t_near, double& t_far) const {
+  if (omnidirectional_) {
+    t_near = 0.0, t_far = far_;
+    return true;
+  }
+  if (orthographic_) return false;
+  // The side planes pass through the eye, so they are a test on the direction alone.
+  for (int i = 0; i < 4; ++i)
+    if (dot(planes_[i].n, d) < 0.0) return false;
+  const double along = dot(planes_[4].n, d);  // depth per metre along d
+  if (!(along > 0.0)) return false;
+  t_near = near_ / along, t_far = far_ / along;
+  return true;
+}
+
 }  // namespace cullcheck::oracle

@@ -77,11 +77,11 @@ grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_s
 expect_exit 2 "horizon bins not a power of two" "$cc" verify --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' \
   --path-params '{"frames":1}' --horizon-bins 1000
 expect_error_names "horizon bins not a power of two" "must be a power of two from 4"
-# Progress: on a terminal (script(1) gives the run one) a run over 2 s shows its stage and how
+# Progress: on a terminal (script(1) gives the run one) a run over 2 s (80 frames: about 4 s) shows its stage and how
 # far it is on stderr; with --quiet, or when stderr is not a terminal, nothing.
-long_run=("$cc" verify --generator default --path-params '{"frames":20}' --method oh_os_conservative)
+long_run=("$cc" verify --generator default --path-params '{"frames":80}' --method oh_os_conservative)
 script -qec "${long_run[*]@Q}" /dev/null >"$work/tty.out" 2>&1
-grep -q "methods and the oracle along the path: [0-9]*/20 frames ([0-9]*%), [0-9]* s, about [0-9]* s left" "$work/tty.out" && pass || fail "progress: nothing shown on a terminal"
+grep -q "methods and the oracle along the path: [0-9]*/80 frames ([0-9]*%), [0-9]* s, about [0-9]* s left" "$work/tty.out" && pass || fail "progress: nothing shown on a terminal"
 script -qec "${long_run[*]@Q} --quiet" /dev/null >"$work/tty-quiet.out" 2>&1
 grep -q "along the path:" "$work/tty-quiet.out" && fail "progress: shown with --quiet" || pass
 "${long_run[@]}" >/dev/null 2>"$work/not-tty.err"

@@ -150,7 +150,9 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
                       {"seconds", o.seconds},
                       {"rays_per_second", ratio(static_cast<double>(o.rays_cast), o.sampling_seconds)},
                       {"bare_embree_rays_per_second", o.bare_embree_rays_per_second},
+                      {"bare_embree_packet_rays_per_second", o.bare_embree_packet_rays_per_second},
                       {"grazing_rays", o.grazing_rays},
+                      {"rays_skipped", o.rays_skipped},
                       {"witness_recheck", {{"checked", o.witness_recheck.checked}, {"dropped", o.witness_recheck.dropped}}}};
   json runs = json::array();
   for (const MethodRun& r : v.runs) {

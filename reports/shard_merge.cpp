@@ -224,7 +224,7 @@ PathVerification merge_verifications(const std::vector<PathVerification>& shards
   }
   out.oracle = first.oracle;
   out.oracle.frames_checked = out.oracle.frames_exact_2d = out.oracle.frames_ray_sampling = 0;
-  out.oracle.rays_cast = out.oracle.grazing_rays = 0;
+  out.oracle.rays_cast = out.oracle.grazing_rays = out.oracle.rays_skipped = 0;
   out.oracle.seconds = out.oracle.sampling_seconds = 0.0;
   out.oracle.witness_recheck = {};
   out.pixels = first.pixels;
@@ -235,6 +235,7 @@ PathVerification merge_verifications(const std::vector<PathVerification>& shards
     out.oracle.frames_ray_sampling += v.oracle.frames_ray_sampling;
     out.oracle.rays_cast += v.oracle.rays_cast;
     out.oracle.grazing_rays += v.oracle.grazing_rays;
+    out.oracle.rays_skipped += v.oracle.rays_skipped;
     out.oracle.seconds += v.oracle.seconds;
     out.oracle.sampling_seconds += v.oracle.sampling_seconds;
     out.oracle.witness_recheck += v.oracle.witness_recheck;

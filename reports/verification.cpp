@@ -336,6 +336,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       ++out.oracle.frames_ray_sampling;
       out.oracle.rays_cast += answer.sampling->rays_cast;
       out.oracle.grazing_rays += answer.sampling->grazing_rays;
+      out.oracle.rays_skipped += answer.sampling->rays_skipped;
       out.oracle.sampling_seconds += answer.sampling->elapsed_seconds;
     } else {
       ++out.oracle.frames_exact_2d;
@@ -428,7 +429,11 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
     out.oracle.witness_recheck += answer.witness_recheck;
   }
   for (MethodRun& run : out.runs) settle_violations(run);
-  if (options.measure_bare_embree && !first_log.rays.empty()) out.oracle.bare_embree_rays_per_second = truth->rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
+  if (options.measure_bare_embree && !first_log.rays.empty()) {
+    out.oracle.bare_embree_rays_per_second = truth->rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads);
+    out.oracle.bare_embree_packet_rays_per_second =
+        truth->rays().bare_embree_rays_per_second(first_log, options.oracle.sampling.threads, 0.2, /*packets=*/true);
+  }
   return out;
 }
 

@@ -187,9 +187,11 @@ struct OracleSummary {
   double seconds = 0.0;
   double sampling_seconds = 0.0;          // time spent in ray-sampling queries
   double bare_embree_rays_per_second = 0.0;  // the same rays in a bare Embree loop, same run
+  double bare_embree_packet_rays_per_second = 0.0;  // the same, in packets as the oracle casts them
   oracle::SamplingOptions density;
   std::size_t oracle_stride = 1;
   std::uint64_t grazing_rays = 0;              // of rays_cast: silhouette-grazing rays
+  std::uint64_t rays_skipped = 0;              // not cast: their object was witnessed (OracleResult::rays_skipped)
   oracle::WitnessRecheckCounts witness_recheck;  // distinct witnesses re-cast, over all frames
 };
 

@@ -282,9 +282,11 @@ json verification_to_json(const PathVerification& v) {
               {"seconds", o.seconds},
               {"sampling_seconds", o.sampling_seconds},
               {"bare_embree_rays_per_second", o.bare_embree_rays_per_second},
+              {"bare_embree_packet_rays_per_second", o.bare_embree_packet_rays_per_second},
               {"density", density},
               {"oracle_stride", o.oracle_stride},
               {"grazing_rays", o.grazing_rays},
+              {"rays_skipped", o.rays_skipped},
               {"witness_recheck", recheck_json(o.witness_recheck)}}},
             {"pixels", {{"enabled", v.pixels.enabled}, {"frames", v.pixels.frames}, {"rays", v.pixels.rays}, {"seconds", v.pixels.seconds}}},
             {"skipped_methods", v.skipped_methods},
@@ -316,9 +318,11 @@ PathVerification verification_from_json(const json& j, const std::string& what) 
   v.oracle.seconds = o.get<double>("seconds");
   v.oracle.sampling_seconds = o.get<double>("sampling_seconds");
   v.oracle.bare_embree_rays_per_second = o.get<double>("bare_embree_rays_per_second");
+  v.oracle.bare_embree_packet_rays_per_second = r.at("oracle").value("bare_embree_packet_rays_per_second", 0.0);
   oracle::from_json(o.at("density"), v.oracle.density);
   v.oracle.oracle_stride = o.get<std::size_t>("oracle_stride");
   v.oracle.grazing_rays = o.get<std::uint64_t>("grazing_rays");
+  v.oracle.rays_skipped = r.at("oracle").value("rays_skipped", std::uint64_t(0));  // shards written before the stop cast every ray
   v.oracle.witness_recheck = recheck_from(o.at("witness_recheck"), r.what("oracle.witness_recheck"));
   const Reader p(r.at("pixels"), r.what("pixels"));
   v.pixels.enabled = p.get<bool>("enabled");

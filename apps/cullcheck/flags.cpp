@@ -161,6 +161,9 @@ void SamplingFlags::add(CLI::App& app) {
   app.add_option("--face-grid", sampling.face_grid, "Oracle: least grid intervals per face")->capture_default_str();
   app.add_option("--frustum-resolution", sampling.frustum_resolution, "Oracle: stratified rays per image row")
       ->capture_default_str();
+  app.add_flag("--oracle-every-ray{false}", sampling.stop_when_witnessed,
+               "Oracle: cast every surface-sample ray, also those of objects already witnessed (default: stop at an object's "
+               "kept witnesses)");
   sampling.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 1024u));
   app.add_option("--oracle-threads", sampling.threads,
                  "Oracle: threads casting rays (default: every core); its answers are the same for any number")

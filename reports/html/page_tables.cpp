@@ -401,8 +401,10 @@ std::string scene_section(const json& report) {
                         count(value_of(i, "skipped_invalid")) + " invalid polygons skipped, CRS " + escape(text_of(i, "crs")));
   const json& o = member(report, "oracle");
   row("oracle", count(value_of(o, "frames_checked")) + " frames checked (every " + count(value_of(o, "oracle_stride")) + "th), " +
-                    count(value_of(o, "rays_cast")) + " rays, " + number(value_of(o, "rays_per_second")) + " rays/s (bare Embree " +
-                    number(value_of(o, "bare_embree_rays_per_second")) + ")");
+                    count(value_of(o, "rays_cast")) + " rays (" + count(value_of(o, "rays_skipped")) +
+                    " skipped: their object already witnessed), " + number(value_of(o, "rays_per_second")) + " rays/s (bare Embree " +
+                    number(value_of(o, "bare_embree_rays_per_second")) + " one by one, " +
+                    number(value_of(o, "bare_embree_packet_rays_per_second")) + " in packets)");
   const json& m = member(report, "machine");
   row("machine", escape(text_of(m, "system")) + ", " + count(value_of(m, "hardware_threads")) + " threads, " +
                      escape(text_of(m, "compiler")) + ", " + escape(text_of(m, "build_type")));
