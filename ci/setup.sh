@@ -26,7 +26,7 @@ rainier=../shared/data/real/dem_mt_rainier/mt_rainier_90m.tif
   --fuzz-subject build/examples/subjects/buggy_sphere_subject --fuzz-budget 200 --fuzz-seed 1 --soak-budget 2000 \
   --region-sweep 0.5,1,1.41,2,4 --knob-sweep horizon_bins=1024,4096,16384 --knob-sweep quadtree_leaf_size=2,8,32 \
   --knob-sweep delta_radius=0.25,0.5,1 --radar-table "${radar_dem[@]}" --polar-table --slice-table --slice-frames 300 --slice-oracle-cells 2 \
-  --output report.json --html report.html
+  --oracle-stride 1 --output report.json --html report.html
 # The page's screenshot beside it (headless Chromium; the browser test keeps one of a short run too).
 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --hide-scrollbars --window-size=1280,2400 \
   --screenshot="$PWD/report-page.png" "file://$PWD/report.html" 2>/dev/null >/dev/null && echo "wrote report-page.png"
