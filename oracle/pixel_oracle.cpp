@@ -51,6 +51,24 @@ class PixelRays {
   Resolution resolution_;
 };
 
+// Casts pixels pixel_at(0..n-1) (row-major indices, n at most a packet) as one packet, among the
+// objects `allowed` flags when given, and writes the object each shows (or kNoObject) to ids.
+template <class PixelAt>
+void cast_pixels(const PixelRays& rays, const EmbreeScene& embree, std::size_t n, PixelAt pixel_at,
+                 const std::vector<std::uint8_t>* allowed, std::vector<ObjectId>& ids) {
+  const TriangleMesh& mesh = embree.mesh();
+  const auto width = std::size_t(rays.resolution().width);
+  RayLog::Ray packet[EmbreeScene::kPacket]{};  // lanes past n are never read; initialised for the compiler
+  EmbreeHit hits[EmbreeScene::kPacket];
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t p = pixel_at(k);
+    const WitnessRay r = rays.ray(int(p % width), int(p / width));
+    packet[k] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
+  }
+  embree.cast_packet(packet, n, hits, allowed);
+  for (std::size_t k = 0; k < n; ++k) ids[pixel_at(k)] = hits[k].hit() ? mesh.owner_id[hits[k].triangle] : kNoObject;
+}
+
 // Runs body(k) for k in [0, count) on `threads` threads, in blocks taken from a shared counter.
 // Each k is handled by exactly one thread, so results written at k do not depend on `threads`.
 template <class Body>
@@ -127,19 +145,10 @@ IdImage PixelOracle::render(const Camera& camera, const std::vector<ObjectId>* o
   const std::vector<std::uint8_t> allowed = only ? allowed_objects(mesh, sorted_copy(*only)) : std::vector<std::uint8_t>{};
   // A row's pixels in packets of neighbours, the most coherent rays there are.
   parallel_for(std::size_t(image.height), threads, 1, [&](std::size_t j) {
-    RayLog::Ray packet[EmbreeScene::kPacket];
-    EmbreeHit hits[EmbreeScene::kPacket];
-    const std::size_t width = std::size_t(image.width), lanes = EmbreeScene::kPacket;
-    for (std::size_t first = 0; first < width; first += lanes) {
-      const std::size_t n = std::min(lanes, width - first);
-      for (std::size_t k = 0; k < n; ++k) {
-        const WitnessRay r = rays.ray(int(first + k), int(j));
-        packet[k] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
-      }
-      embree.cast_packet(packet, n, hits, only ? &allowed : nullptr);
-      for (std::size_t k = 0; k < n; ++k)
-        if (hits[k].hit()) image.ids[j * width + first + k] = mesh.owner_id[hits[k].triangle];
-    }
+    const auto width = std::size_t(image.width);
+    for (std::size_t first = 0; first < width; first += EmbreeScene::kPacket)
+      cast_pixels(rays, embree, std::min(EmbreeScene::kPacket, width - first), [&](std::size_t k) { return j * width + first + k; },
+                  only ? &allowed : nullptr, image.ids);
   });
   return image;
 }
@@ -183,16 +192,9 @@ PixelComparison PixelOracle::compare(const IdImage& full, const Camera& camera, 
   // In packets of consecutive misdrawn pixels (row-major, so mostly neighbours in a blob).
   const std::size_t packets = (misdrawn.size() + EmbreeScene::kPacket - 1) / EmbreeScene::kPacket;
   parallel_for(packets, threads, 16, [&](std::size_t q) {
-    RayLog::Ray packet[EmbreeScene::kPacket];
-    EmbreeHit hits[EmbreeScene::kPacket];
-    const std::size_t first = q * EmbreeScene::kPacket, n = std::min(EmbreeScene::kPacket, misdrawn.size() - first);
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t p = misdrawn[first + k];
-      const WitnessRay r = rays.ray(int(p % std::size_t(res.width)), int(p / std::size_t(res.width)));
-      packet[k] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
-    }
-    embree.cast_packet(packet, n, hits, &allowed);
-    for (std::size_t k = 0; k < n; ++k) out.drawn.ids[misdrawn[first + k]] = hits[k].hit() ? mesh.owner_id[hits[k].triangle] : kNoObject;
+    const std::size_t first = q * EmbreeScene::kPacket;
+    cast_pixels(rays, embree, std::min(EmbreeScene::kPacket, misdrawn.size() - first), [&](std::size_t k) { return misdrawn[first + k]; },
+                &allowed, out.drawn.ids);
   });
 
   for (std::uint64_t size : component_sizes(out.misdrawn_mask, res.width, res.height)) {

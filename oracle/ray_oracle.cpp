@@ -280,11 +280,12 @@ double RayOracle::bare_embree_rays_per_second(const RayLog& log, int threads, do
           impl_->embree.cast_packet(&log.rays[k], n, found);
           for (std::size_t i = 0; i < n; ++i) hits += found[i].hit();
         }
-      }
-      for (std::size_t k = begin; k < end && !packets; ++k) {
-        RTCRayHit rh = embree_ray(log.rays[k]);
-        rtcIntersect1(scene, &context, &rh);
-        hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      } else {
+        for (std::size_t k = begin; k < end; ++k) {
+          RTCRayHit rh = embree_ray(log.rays[k]);
+          rtcIntersect1(scene, &context, &rh);
+          hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
       }
       sink += hits;  // keeps the loop observable
     };
