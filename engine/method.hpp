@@ -111,7 +111,8 @@ class RegionCullingMethod {
   // `known[i]` (scene building index i) marks a building already in that union: a sweep-based
   // method accepts it without its horizon tests and casts its shadows, which leaves the union
   // unchanged (horizon_sweep.hpp) and saves the tests. The default ignores `known`.
-  // `known_passive[i]` does the same for passive target i (accepted untested).
+  // `known_passive[i]` marks passive target i as held: it is left out of the sweep (it casts no
+  // shadow) and of CullResult::passive.
   virtual CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& /*known*/,
                                           const std::vector<char>* /*known_passive*/ = nullptr) {
     return cull_region(region);

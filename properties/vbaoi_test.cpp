@@ -164,6 +164,39 @@ TEST(NavigationGraph, InvariantsHoldOnStreetAndFreeSpaceGraphs) {
   }
 }
 
+// The graph's digest (report.json graph.digest: how a faster build shows it changed no set) is
+// pinned on two small cities, is the same with decisions carried from sample to sample and
+// without (carrying leaves out known passive targets and the spans of known buildings, issue 17:
+// the union must not move), and changes when any one PVSo or PVSn entry does.
+TEST(NavigationGraph, DigestPinsEverySetAndCarryingChangesNone) {
+  const std::pair<SceneSpec, std::uint64_t> cities[] = {
+      {SceneSpec{"manhattan", 3, {{"blocks_x", 3}, {"blocks_y", 2}, {"thin_fraction", 0.4}}}, 0x432286bbbe7bbaf8ull},
+      {SceneSpec{"plaza", 4, {{"blocks_x", 3}, {"blocks_y", 3}, {"kiosk_count", 5}, {"plaza_blocks_x", 1}, {"plaza_blocks_y", 1}}},
+       0xda2ded1db6924b4bull}};
+  for (const auto& [spec, pinned] : cities) {
+    const Scene scene = generators::scene_of(spec);
+    const auto regions = generators::navigable_regions(scene);
+    NavigationGraphOptions o = graph_options();
+    const NavigationGraph carried = build_navigation_graph(scene, regions, o);
+    o.carry = false;
+    const NavigationGraph uncarried = build_navigation_graph(scene, regions, o);
+    const std::uint64_t digest = graph_digest(carried);
+    EXPECT_EQ(digest, pinned) << spec << " digest 0x" << std::hex << digest;
+    EXPECT_EQ(graph_digest(uncarried), digest) << spec;
+    for (std::size_t i = 0; i < carried.nodes.size(); ++i) {
+      EXPECT_EQ(uncarried.nodes[i].pvs_o, carried.nodes[i].pvs_o) << spec << " node " << i;
+      EXPECT_EQ(uncarried.nodes[i].pvs_n, carried.nodes[i].pvs_n) << spec << " node " << i;
+    }
+    NavigationGraph changed = carried;
+    ASSERT_FALSE(changed.nodes.back().pvs_o.empty());
+    changed.nodes.back().pvs_o.pop_back();
+    EXPECT_NE(graph_digest(changed), digest) << spec;
+    changed = carried;
+    changed.nodes.front().pvs_n.back() += 1;
+    EXPECT_NE(graph_digest(changed), digest) << spec;
+  }
+}
+
 // Intersection and union give symmetric PVSn; intersection's lists are within union's, and they
 // differ by exactly the one-sided entries (each dropped from its lister, or mirrored to the other).
 TEST(NavigationGraph, PvsnSymmetryByIntersectionIsWithinUnion) {

@@ -60,6 +60,7 @@ nlohmann::json graph_json(const Scene& scene, const NavigationGraph& graph) {
           {"pvs_n_symmetry", std::string(pvs_n_symmetry_name(graph.options.symmetry))},
           {"pvs_n_one_sided", graph.stats.pvs_n_one_sided},
           {"pvs_n_added_neighbours", graph.stats.pvs_n_added_neighbours},
+          {"digest", hex(graph_digest(graph))},
           {"invariant_violations", problems.size()},
           {"invariant_problems", first_problems}};
 }
@@ -248,10 +249,11 @@ std::string vbaoi_table(const nlohmann::json& r) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "vbaoi graph: %zu nodes, %zu buildings, %s eps %.3g m, built in %.1f s (%u threads, median %.1f ms/node); "
-                "invariant violations %zu\n",
+                "invariant violations %zu; digest %s\n",
                 g["nodes"].get<std::size_t>(), g["buildings"].get<std::size_t>(), g["method"].get<std::string>().c_str(),
                 g["epsilon"].get<double>(), g["build_seconds"].get<double>(), g["threads"].get<unsigned>(),
-                g["node_ms"]["median"].get<double>(), g["invariant_violations"].get<std::size_t>());
+                g["node_ms"]["median"].get<double>(), g["invariant_violations"].get<std::size_t>(),
+                g.value("digest", std::string("-")).c_str());
   out << line;
   std::snprintf(line, sizeof line,
                 "  PVSo per node: mean %.1f, median %.0f, max %.0f buildings (%.2f%% of the city); %.0f KB median against "

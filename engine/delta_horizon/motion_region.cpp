@@ -193,10 +193,18 @@ bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, do
   return true;
 }
 bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double turn) {
+  if (volume.omnidirectional) {
+    // Most boxes lie far inside the far plane: their L1 distance, an upper bound of the distance
+    // with room for rounding, settles it without the square root (same answer; NaN falls through).
+    const double l1 = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x}) +
+                      std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y}) +
+                      std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
+    if (l1 <= 0.5 * volume.far && reach >= 0.0) return true;
+    return narrow(box_distance(volume, box) - reach) <= volume.far;
+  }
   const double far_extent = length(Vec3{std::max(std::abs(box.lo.x - volume.eye.x), std::abs(box.hi.x - volume.eye.x)),
                                         std::max(std::abs(box.lo.y - volume.eye.y), std::abs(box.hi.y - volume.eye.y)),
                                         std::max(std::abs(box.lo.z - volume.eye.z), std::abs(box.hi.z - volume.eye.z))});
-  if (volume.omnidirectional) return narrow(box_distance(volume, box) - reach) <= volume.far;
   for (int i = 0; i < volume.plane_count; ++i) {
     const Vec3& n = volume.planes[i].n;
     const Vec3 corner{n.x >= 0 ? box.hi.x : box.lo.x, n.y >= 0 ? box.hi.y : box.lo.y, n.z >= 0 ? box.hi.z : box.lo.z};

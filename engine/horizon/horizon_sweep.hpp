@@ -18,6 +18,7 @@
 // be hidden — without testing it — gives the same PVS and the same horizon.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -61,16 +62,31 @@ class ShadowQueue {
   void clear() {
     queue_ = {};
     order_ = 0;
+    replay_.clear();
+    replay_next_ = 0;
   }
   void record_into(std::vector<Shadow>* log) { log_ = log; }
   void push(double farthest, const AzimuthSpan& span, double slope) {
     queue_.push({farthest, span, slope, order_++});
     if (log_) log_->push_back({farthest, span, slope});
   }
+  // Queues a whole log at once (a passive-target sweep replaying a building sweep's shadows):
+  // sorted once by farthest point instead of pushed one by one. Merging is a maximum, so the
+  // order among shadows of equal distance changes nothing.
+  void replay(const std::vector<Shadow>& log) {
+    replay_.assign(log.begin(), log.end());
+    std::sort(replay_.begin(), replay_.end(), [](const Shadow& a, const Shadow& b) { return a.farthest < b.farthest; });
+    replay_next_ = 0;
+  }
   // Merges every shadow whose farthest point is nearer than `distance` (strictly) into `horizon`
   // and, when given, into `also` (ΔH raises H(t+1) and its mask together).
   void merge_nearer_than(double distance, OcclusionHorizon& horizon, CullStatistics& stats,
                          OcclusionHorizon* also = nullptr) {
+    for (; replay_next_ < replay_.size() && replay_[replay_next_].farthest < distance; ++replay_next_) {
+      horizon.raise(replay_[replay_next_].span, replay_[replay_next_].slope);
+      if (also) also->raise(replay_[replay_next_].span, replay_[replay_next_].slope);
+      ++stats.occluders_applied;
+    }
     while (!queue_.empty() && queue_.top().farthest < distance) {
       horizon.raise(queue_.top().span, queue_.top().slope);
       if (also) also->raise(queue_.top().span, queue_.top().slope);
@@ -93,6 +109,8 @@ class ShadowQueue {
   std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> queue_;
   std::uint64_t order_ = 0;
   std::vector<Shadow>* log_ = nullptr;
+  std::vector<Shadow> replay_;  // sorted by farthest; merged from replay_next_ on
+  std::size_t replay_next_ = 0;
 };
 
 // One entry of the front-to-back sweep: a quadtree cell or a building, keyed by its nearest plan
@@ -166,10 +184,15 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
 //    within the CVP's (shrunk shadows even less), so merging it raises no bin.
 //  - `pending`: the queue shadows wait in. It may arrive holding shadows already (a passive-
 //    target sweep replays a building sweep's shadows); whatever is left is merged at the end.
-template <class Meets, class CastShadows, class Known>
+//  - `leave_out(is_building, index)`: a cell or building the caller does not need to see at all,
+//    not even queued. Only for things that cast no shadows (passive targets already held: what
+//    they would add is known, and they hide nothing), so the rest of the sweep is unchanged.
+//  - `cast_reads_spans`: false when `cast` ignores the spans (methods whose shadows come from
+//    occluders shrunk beforehand): a known building's CVP spans are then not computed at all.
+template <class Meets, class CastShadows, class Known, class LeaveOut>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
                    bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, const Known& known,
-                   ShadowQueue& pending, CullResult& result) {
+                   const LeaveOut& leave_out, ShadowQueue& pending, CullResult& result, bool cast_reads_spans = true) {
   CullStatistics& stats = result.stats;
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
@@ -182,7 +205,8 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
   std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
   std::vector<std::optional<ConvexSpan>> spans;
   const auto& cells = quadtree.cells();
-  if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
+  if (!cells.empty() && cells[0].last > cells[0].first && !leave_out(false, 0u))
+    sweep.push({min_distance(e, cells[0].bounds), false, 0});
 
   while (!sweep.empty()) {
     const SweepItem item = sweep.top();
@@ -194,8 +218,13 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
       if (!meets(volume, box) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
       quadtree.for_each_child(
-          cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
-          [&](std::uint32_t b) { sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b}); });
+          cell,
+          [&](std::uint32_t c) {
+            if (!leave_out(false, c)) sweep.push({min_distance(e, cells[c].bounds), false, c});
+          },
+          [&](std::uint32_t b) {
+            if (!leave_out(true, b)) sweep.push({min_distance(e, scene.buildings[b].bounds.plan()), true, b});
+          });
       continue;
     }
     const Building& building = scene.buildings[item.index];
@@ -203,7 +232,8 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
       if (!meets(volume, building.bounds)) continue;
       ++stats.items_skipped;
       spans.clear();
-      for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
+      if (cast_reads_spans)
+        for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
     } else {
       ++stats.buildings_tested;
       if (!meets(volume, building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
@@ -215,6 +245,13 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
   }
   pending.merge_all(horizon, stats);
   stats.horizon_nodes = horizon.take_node_visits();
+}
+template <class Meets, class CastShadows, class Known>
+void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
+                   bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, const Known& known,
+                   ShadowQueue& pending, CullResult& result) {
+  sweep_horizon(scene, quadtree, horizon, camera, restrict_to_coverage, meets, cast, known,
+                [](bool, std::uint32_t) { return false; }, pending, result);
 }
 template <class Meets, class CastShadows>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,

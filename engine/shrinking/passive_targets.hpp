@@ -29,7 +29,8 @@ class PassiveTargets {
   PassiveTargets(Scene targets, const MethodOptions& options);
 
   // The ids of the targets not hidden from `region` by `shadows` (a building sweep's log), sorted.
-  // Targets with known[i] set are accepted untested. Tests are added to `stats`.
+  // Targets with known[i] set are left out (the caller holds them already). Tests are added to
+  // `stats`.
   std::vector<ObjectId> visible(const ViewRegion& region, const std::vector<Shadow>& shadows,
                                 const std::vector<char>* known, CullStatistics& stats);
   std::size_t size() const { return scene_.buildings.size(); }
@@ -38,6 +39,7 @@ class PassiveTargets {
   Scene scene_;
   Quadtree quadtree_;
   OcclusionHorizon horizon_;
+  std::vector<std::uint32_t> unknown_before_;  // scratch of visible()
 };
 
 }  // namespace cullcheck

@@ -20,7 +20,8 @@ CullResult PreshrunkOccluders::sweep(const ViewRegion& region, const std::vector
                           const std::vector<std::optional<ConvexSpan>>&) {
                         queue_shrunk_shadows(pending, shrunk_[index], eye, distance, unclipped);
                       },
-                      known, passive_ ? &*passive_ : nullptr, known_passive);
+                      known, passive_ ? &*passive_ : nullptr, known_passive, /*guard_every_eye=*/true,
+                      /*cast_reads_spans=*/false);
 }
 
 }  // namespace cullcheck

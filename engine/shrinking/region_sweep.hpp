@@ -22,13 +22,14 @@ namespace cullcheck {
 // near plane) hands it the centre's alone.
 // `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
 // cull_region_carrying): they are accepted untested and cast their shadows.
+// `cast_reads_spans`: false when `cast` ignores its spans argument (sweep_horizon).
 // `passive`, when given, is swept after the buildings against the same shadows (passive_targets.hpp)
-// into result.passive; `known_passive` marks targets already held.
+// into result.passive; `known_passive` marks targets already held, which are left out of it.
 template <class CastShadows>
 CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
                         const CastShadows& cast, const std::vector<char>* known = nullptr,
                         PassiveTargets* passive = nullptr, const std::vector<char>* known_passive = nullptr,
-                        bool guard_every_eye = true) {
+                        bool guard_every_eye = true, bool cast_reads_spans = true) {
   const double reach = guard_every_eye ? region.radius : 0.0;
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
@@ -45,7 +46,8 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
           const std::vector<std::optional<ConvexSpan>>& spans) {
         cast(queue, index, eye, distance, unclipped + reach, spans);
       },
-      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, pending, result);
+      [&](std::uint32_t b) { return known && (*known)[b] != 0; }, [](bool, std::uint32_t) { return false; }, pending,
+      result, cast_reads_spans);
   std::sort(result.pvs.begin(), result.pvs.end());
   if (passive) result.passive = passive->visible(region, log, known_passive, result.stats);
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

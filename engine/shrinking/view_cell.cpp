@@ -19,6 +19,8 @@ std::string count_text(double v) {
   return text;
 }
 
+constexpr std::uint32_t kNoIndex = 0xFFFFFFFFu;
+
 }  // namespace
 
 std::string_view cell_sampling_name(CellSampling s) { return s == CellSampling::boundary ? "boundary" : "tiled"; }
@@ -87,6 +89,13 @@ ViewCellPvs::ViewCellPvs(RegionCullingMethod& method, const Scene& scene, std::s
     : method_(method), scene_(scene), passive_targets_(passive_targets) {
   for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of_.emplace_back(scene.buildings[b].id, b);
   std::sort(index_of_.begin(), index_of_.end());
+  // Ids that are (nearly) the indices, as generated cities' are: a direct table, not a search
+  // for each id of each sample's PVS.
+  if (!index_of_.empty() && index_of_.back().first < 4 * index_of_.size() + 64) {
+    dense_index_of_.assign(index_of_.back().first + 1, kNoIndex);
+    for (const auto& [id, b] : index_of_)
+      if (dense_index_of_[id] == kNoIndex) dense_index_of_[id] = b;  // the first, as the search finds
+  }
 }
 
 ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSampling sampling, bool carry,
@@ -106,6 +115,10 @@ ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSa
   known.assign(scene_.buildings.size(), 0);
   known_passive_.assign(passive_targets_, 0);
   auto mark = [&](ObjectId id) {
+    if (id < dense_index_of_.size() && dense_index_of_[id] != kNoIndex) {
+      known[dense_index_of_[id]] = 1;
+      return;
+    }
     const auto it = std::lower_bound(index_of_.begin(), index_of_.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
     known[it->second] = 1;
   };

@@ -82,6 +82,7 @@ class ViewCellPvs {
   RegionCullingMethod& method_;
   const Scene& scene_;
   std::vector<std::pair<ObjectId, std::uint32_t>> index_of_;  // (id, scene index), sorted by id
+  std::vector<std::uint32_t> dense_index_of_;                 // id -> scene index, when ids are small
   std::vector<char> known_;                                   // the union so far, by scene index
   std::size_t passive_targets_;
   std::vector<char> known_passive_;                           // the passive union so far, by id

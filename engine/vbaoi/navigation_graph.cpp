@@ -1,5 +1,6 @@
 #include "engine/vbaoi/navigation_graph.hpp"
 #include "core/progress.hpp"
+#include "core/random.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -153,6 +154,22 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
   // by graph_invariant_violations), so the second pass kept PVSn symmetric.
   graph.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return graph;
+}
+
+std::uint64_t graph_digest(const NavigationGraph& graph) {
+  std::uint64_t h = 0x475241504855ULL;  // "GRAPHU"
+  auto add = [&h](std::uint64_t x) {
+    std::uint64_t s = h ^ (x * 0x9E3779B97F4A7C15ULL);
+    h = splitmix64(s);
+  };
+  for (const NavigationNode& n : graph.nodes) {
+    add(n.id);
+    for (const auto* list : {&n.pvs_o, &n.pvs_n, &n.neighbours}) {
+      add(list->size());
+      for (std::uint32_t x : *list) add(x);
+    }
+  }
+  return h;
 }
 
 std::vector<std::string> graph_invariant_violations(const NavigationGraph& graph) {

@@ -309,6 +309,37 @@ void BM_VbaoiNode(benchmark::State& state) {
 }
 BENCHMARK(BM_VbaoiNode)->Unit(benchmark::kMillisecond)->MinTime(1.0)->Repetitions(5)->ReportAggregatesOnly(true);
 
+// The same on the main job's VbAoI city (report --vbaoi: a 41 x 41-block Manhattan grid, 10,086
+// buildings, 5,208 nodes), whose whole graph issue 17 wants in 15 s on two cores: every 61st node
+// in turn, with what a sample costs (tests, shadows and skipped buildings per sample).
+void BM_VbaoiNodeMainCity(benchmark::State& state) {
+  static const Scene scene =
+      generators::make_city("manhattan", 1, nlohmann::json{{"blocks_x", 41}, {"blocks_y", 41}});
+  static const std::vector<NavigableRegion> regions = generators::navigable_regions(scene);
+  NavigationGraphOptions options;
+  options.carry = state.range(0) != 0;
+  NodeVisibility nodes(scene, regions, options);
+  std::size_t next = 0;
+  double samples = 0, pvs_o = 0, cells = 0, tested = 0, skipped = 0, shadows = 0, done = 0;
+  for (auto _ : state) {
+    const ViewCellResult r = nodes.compute((next++ * 61) % regions.size());
+    samples += static_cast<double>(r.samples);
+    pvs_o += static_cast<double>(r.pvs.size());
+    cells += static_cast<double>(r.stats.cells_tested);
+    tested += static_cast<double>(r.stats.buildings_tested);
+    skipped += static_cast<double>(r.stats.items_skipped);
+    shadows += static_cast<double>(r.stats.occluders_applied);
+    ++done;
+  }
+  state.counters["samples_per_node"] = samples / done;
+  state.counters["pvs_o_per_node"] = pvs_o / done;
+  state.counters["cells_per_sample"] = cells / samples;
+  state.counters["tested_per_sample"] = tested / samples;
+  state.counters["skipped_per_sample"] = skipped / samples;
+  state.counters["shadows_per_sample"] = shadows / samples;
+}
+BENCHMARK(BM_VbaoiNodeMainCity)->ArgName("carry")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MinTime(2.0)->Repetitions(3)->ReportAggregatesOnly(true);
+
 void BM_VbaoiSimulation(benchmark::State& state) {
   const DefaultCityGraph& g = default_city_graph(true);
   vbaoi::SimulationOptions o;
