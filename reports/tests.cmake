@@ -23,6 +23,9 @@ add_test(NAME witness_recheck_report_test COMMAND witness_recheck_report_test)
 add_executable(region_sweep_test ${CMAKE_CURRENT_LIST_DIR}/tests/region_sweep_test.cpp)
 target_link_libraries(region_sweep_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
 add_test(NAME region_sweep_test COMMAND region_sweep_test)
+add_executable(scaling_test ${CMAKE_CURRENT_LIST_DIR}/tests/scaling_test.cpp)
+target_link_libraries(scaling_test PRIVATE cullcheck_reports cullcheck_generators GTest::gtest_main cullcheck_warnings)
+add_test(NAME scaling_test COMMAND scaling_test)
 
 # The report page: text helpers, SVG plots, the page from hand-made reports, the map's frame.
 add_executable(report_page_test ${CMAKE_CURRENT_LIST_DIR}/html/tests/html_text_test.cpp
