@@ -550,7 +550,13 @@ TEST(VbaoiSimulation, BaselinesMissVisibleClientsThatVbaoiReaches) {
   for (const vbaoi::PolicyTraffic& p : r.policies) {
     EXPECT_EQ(p.visible_updates, 2 * r.visible_pairs) << p.policy;
     EXPECT_EQ(p.lost_updates, 0u) << p.policy;
+    EXPECT_LE(p.checked_update_deliveries, p.update_deliveries) << p.policy;
   }
+  // The limit (issue 17: every policy's deliveries beside it): a policy that misses nothing on a
+  // clean network delivers at least every visible update at the checked ticks; broadcast, which
+  // sends everything to everyone, more than VbAoI.
+  EXPECT_GE(r.policies[0].checked_update_deliveries, r.policies[0].visible_updates);
+  EXPECT_GT(r.policies[1].checked_update_deliveries, r.policies[0].checked_update_deliveries);
   // Joining clients load their node's PVSo, not the city.
   for (std::uint64_t bytes : r.join_bytes) EXPECT_LT(bytes, r.whole_city_bytes + 64 * 1024);
 }

@@ -95,6 +95,11 @@ nlohmann::json run_json(const vbaoi::SimulationResult& r, const SceneSource& sou
                         {"messages", p.messages},
                         {"bytes", p.bytes},
                         {"update_deliveries", p.update_deliveries},
+                        {"checked_update_deliveries", p.checked_update_deliveries},
+                        {"deliveries_vs_limit",
+                         p.visible_updates > 0
+                             ? static_cast<double>(p.checked_update_deliveries) / static_cast<double>(p.visible_updates)
+                             : 0.0},
                         {"messages_per_tick", spread(as_doubles(p.messages_per_tick))},
                         {"bytes_per_tick", spread(as_doubles(p.bytes_per_tick))},
                         {"messages_vs_vbaoi", vbaoi_messages > 0 ? static_cast<double>(p.messages) / vbaoi_messages : 0.0},
@@ -271,14 +276,15 @@ std::string vbaoi_table(const nlohmann::json& r) {
                 g["pvs_n_symmetry"].get<std::string>().c_str(),
                 static_cast<unsigned long long>(g["pvs_n_added_neighbours"].get<std::uint64_t>()));
   out << line;
-  out << "clients  policy        radius   msgs/tick  KB/tick  vs_vbaoi  visible_upd   missed    lost  grouping_viol\n";
+  out << "clients  policy        radius   msgs/tick  KB/tick  vs_vbaoi  visible_upd  vs_limit   missed    lost  grouping_viol\n";
   for (const auto& run : r["runs"]) {
     for (const auto& p : run["policies"]) {
-      std::snprintf(line, sizeof line, "%7u  %-12s %7.0f %11.1f %8.1f %9.1f %12llu %8llu %7llu %14llu\n",
+      std::snprintf(line, sizeof line, "%7u  %-12s %7.0f %11.1f %8.1f %9.1f %12llu %9.2f %8llu %7llu %14llu\n",
                     run["clients"].get<unsigned>(), p["policy"].get<std::string>().c_str(), p["radius"].get<double>(),
                     p["messages_per_tick"]["mean"].get<double>(), p["bytes_per_tick"]["mean"].get<double>() / 1024.0,
                     p["messages_vs_vbaoi"].get<double>(),
                     static_cast<unsigned long long>(p["visible_updates"].get<std::uint64_t>()),
+                    p.value("deliveries_vs_limit", 0.0),
                     static_cast<unsigned long long>(p["missed_updates"].get<std::uint64_t>()),
                     static_cast<unsigned long long>(p["lost_updates"].get<std::uint64_t>()),
                     static_cast<unsigned long long>(p["grouping_violations"].get<std::uint64_t>()));

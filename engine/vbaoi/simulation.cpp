@@ -144,6 +144,7 @@ class Simulation {
       p.messages_per_tick.assign(ticks_, 0);
       p.bytes_per_tick.assign(ticks_, 0);
     }
+    checked_tick_.assign(ticks_, 0);
     r_.whole_city_bytes = whole_city_bytes(scene);
     building_index_.reserve(scene.buildings.size());
     for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) building_index_[scene.buildings[b].id] = b;
@@ -498,6 +499,7 @@ class Simulation {
     const auto pairs = los_(eyes);
     r_.line_of_sight_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++r_.checked_ticks;
+    checked_tick_[k] = 1;
     r_.pairs_checked += active.size() * (active.size() - 1) / 2;
     for (const auto& [i, j] : pairs) {
       const std::uint32_t a = active[i], b = active[j];
@@ -590,28 +592,33 @@ class Simulation {
     const std::uint64_t k = m.request;
     const std::uint32_t y = m.client;
     place(y, m.channel);
+    // Each policy's deliveries of this update, also counted against the limit when its tick was checked.
+    auto deliver = [&](std::size_t policy, std::size_t n) {
+      r_.policies[policy].update_deliveries += n;
+      if (k < checked_tick_.size() && checked_tick_[k]) r_.policies[policy].checked_update_deliveries += n;
+    };
     // VbAoI: the listeners of the update's channel.
     const auto& listeners = members_[m.channel];
     const std::size_t vbaoi = listeners.size() - (contains(listeners, y) ? 1 : 0);
     count(kVbaoi, vbaoi, vbaoi * m.bytes, k);
     r_.messages_by_kind[static_cast<std::size_t>(MessageKind::update)] += vbaoi;
     r_.bytes_by_kind[static_cast<std::size_t>(MessageKind::update)] += vbaoi * m.bytes;
-    r_.policies[kVbaoi].update_deliveries += vbaoi;
+    deliver(kVbaoi, vbaoi);
     // Broadcast: every other client the server knows.
     const std::size_t everyone = known_count_ - (known_[y] ? 1 : 0);
     count(kBroadcast, everyone, everyone * m.bytes, k);
-    r_.policies[kBroadcast].update_deliveries += everyone;
+    deliver(kBroadcast, everyone);
     // Neighbours: every other client the server places in the update's node or one of its SNs.
     std::size_t near = 0;
     for (NodeId n : graph_.nodes[m.channel].neighbours) near += clients_in_[n];
     near += clients_in_[m.channel] - 1;  // y itself was placed there on arrival
     count(kNeighbours, near, near * m.bytes, k);
-    r_.policies[kNeighbours].update_deliveries += near;
+    deliver(kNeighbours, near);
     // Circular: every other client last known within R of the update's position.
     for (std::size_t p = kFirstCircular; p < r_.policies.size(); ++p) {
       const std::size_t n = within(m.position, r_.policies[p].radius, y);
       count(p, n, n * m.bytes, k);
-      r_.policies[p].update_deliveries += n;
+      deliver(p, n);
     }
     const auto it = expected_.find(key(y, k));
     if (it != expected_.end()) {
@@ -704,6 +711,7 @@ class Simulation {
   std::vector<std::optional<std::uint64_t>> cell_of_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
   double grid_size_ = 1.0;
+  std::vector<char> checked_tick_;  // by tick: pairs were checked (the limit is known there)
   // Observers each checked tick's update must reach, by (client, tick).
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> expected_;
 };

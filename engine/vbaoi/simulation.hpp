@@ -98,6 +98,10 @@ struct PolicyTraffic {
   std::uint64_t messages = 0;    // every message sent: updates up, deliveries down, control
   std::uint64_t bytes = 0;
   std::uint64_t update_deliveries = 0;  // pose updates delivered to listeners (fan-out)
+  // ... of updates sent at checked ticks: beside visible_updates (the deliveries an interest
+  // manager that knew every line of sight would make at those ticks, the traffic's physical
+  // limit), the policy's cost over that limit.
+  std::uint64_t checked_update_deliveries = 0;
   std::vector<std::uint64_t> messages_per_tick;  // by tick of sending
   std::vector<std::uint64_t> bytes_per_tick;
   // Correctness, over the checked ticks:
