@@ -354,12 +354,14 @@ std::string vbaoi_table_section(const json& report) {
                     number(value_of(member(g, "pvs_o"), "mean")) + " objects on average (" +
                     percent(value_of(g, "pvs_o_fraction_of_city")).substr(1) + " of the city), " +
                     count(value_of(g, "invariant_violations")) + " invariant violations.</p>\n<table>" +
-                    header({"<clients", "<policy", "radius (m)", "messages", "bytes", "messages vs VbAoI", "missed updates", "lost updates"});
+                    header({"<clients", "<policy", "radius (m)", "messages", "bytes", "messages vs VbAoI", "deliveries vs limit",
+                            "missed updates", "lost updates"});
   for (const json& run : member(v, "runs"))
     for (const json& p : member(run, "policies"))
       out += "<tr>" + cell(count(value_of(run, "clients")), "name") + cell(escape(text_of(p, "policy")), "name") +
              cell(value_of(p, "radius") > 0 ? number(value_of(p, "radius")) : "\u2013") + cell(count(value_of(p, "messages"))) +
              cell(count(value_of(p, "bytes"))) + cell(number(value_of(p, "messages_vs_vbaoi")) + "\u00d7") +
+             cell(p.contains("deliveries_vs_limit") ? number(value_of(p, "deliveries_vs_limit")) + "\u00d7" : "\u2013") +
              violations_cell(value_of(p, "missed_updates")) + cell(count(value_of(p, "lost_updates"))) + "</tr>\n";
   out += "</table>\n";
   for (const json& run : member(v, "runs"))
