@@ -21,6 +21,13 @@ constexpr std::uint64_t splitmix64(std::uint64_t& state) {
   return z ^ (z >> 31);
 }
 
+// Folds b into the hash a (SplitMix64 of a ^ b·φ): the digests of runs and graphs, and draws keyed
+// by a message's identity, are chains of it.
+constexpr std::uint64_t hash_mix(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t s = a ^ (b * 0x9E3779B97F4A7C15ULL);
+  return splitmix64(s);
+}
+
 class Random {
  public:
   explicit constexpr Random(std::uint64_t seed) {

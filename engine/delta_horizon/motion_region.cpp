@@ -151,10 +151,14 @@ struct RegionBounds {
 // Distance from the eye to a box: the plain sum of squares (bit-identical to the rest of the
 // engine), rescaled only when a square overflows, so that a box 1e200 m away is not "beyond
 // far" because its distance came out +inf.
+// How far the box lies beyond the eye along each axis (0 where the eye is within its extent).
+Vec3 box_offsets(const ViewVolume& volume, const Box3& box) {
+  return {std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x}),
+          std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y}),
+          std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z})};
+}
 double box_distance(const ViewVolume& volume, const Box3& box) {
-  const double dx = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x});
-  const double dy = std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y});
-  const double dz = std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
+  const auto [dx, dy, dz] = box_offsets(volume, box);
   const double d2 = dx * dx + dy * dy + dz * dz;
   if (std::isfinite(d2)) return std::sqrt(d2);
   const double m = std::max({dx, dy, dz});
@@ -196,10 +200,8 @@ bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double tu
   if (volume.omnidirectional) {
     // Most boxes lie far inside the far plane: their L1 distance, an upper bound of the distance
     // with room for rounding, settles it without the square root (same answer; NaN falls through).
-    const double l1 = std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x}) +
-                      std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y}) +
-                      std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z});
-    if (l1 <= 0.5 * volume.far && reach >= 0.0) return true;
+    const Vec3 d = box_offsets(volume, box);
+    if (d.x + d.y + d.z <= 0.5 * volume.far && reach >= 0.0) return true;
     return narrow(box_distance(volume, box) - reach) <= volume.far;
   }
   const double far_extent = length(Vec3{std::max(std::abs(box.lo.x - volume.eye.x), std::abs(box.hi.x - volume.eye.x)),

@@ -82,17 +82,14 @@ class ShadowQueue {
   // and, when given, into `also` (ΔH raises H(t+1) and its mask together).
   void merge_nearer_than(double distance, OcclusionHorizon& horizon, CullStatistics& stats,
                          OcclusionHorizon* also = nullptr) {
-    for (; replay_next_ < replay_.size() && replay_[replay_next_].farthest < distance; ++replay_next_) {
-      horizon.raise(replay_[replay_next_].span, replay_[replay_next_].slope);
-      if (also) also->raise(replay_[replay_next_].span, replay_[replay_next_].slope);
+    auto merge = [&](const AzimuthSpan& span, double slope) {
+      horizon.raise(span, slope);
+      if (also) also->raise(span, slope);
       ++stats.occluders_applied;
-    }
-    while (!queue_.empty() && queue_.top().farthest < distance) {
-      horizon.raise(queue_.top().span, queue_.top().slope);
-      if (also) also->raise(queue_.top().span, queue_.top().slope);
-      ++stats.occluders_applied;
-      queue_.pop();
-    }
+    };
+    for (; replay_next_ < replay_.size() && replay_[replay_next_].farthest < distance; ++replay_next_)
+      merge(replay_[replay_next_].span, replay_[replay_next_].slope);
+    for (; !queue_.empty() && queue_.top().farthest < distance; queue_.pop()) merge(queue_.top().span, queue_.top().slope);
   }
   void merge_all(OcclusionHorizon& horizon, CullStatistics& stats, OcclusionHorizon* also = nullptr) {
     merge_nearer_than(HUGE_VAL, horizon, stats, also);

@@ -158,15 +158,11 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
 
 std::uint64_t graph_digest(const NavigationGraph& graph) {
   std::uint64_t h = 0x475241504855ULL;  // "GRAPHU"
-  auto add = [&h](std::uint64_t x) {
-    std::uint64_t s = h ^ (x * 0x9E3779B97F4A7C15ULL);
-    h = splitmix64(s);
-  };
   for (const NavigationNode& n : graph.nodes) {
-    add(n.id);
+    h = hash_mix(h, n.id);
     for (const auto* list : {&n.pvs_o, &n.pvs_n, &n.neighbours}) {
-      add(list->size());
-      for (std::uint32_t x : *list) add(x);
+      h = hash_mix(h, list->size());
+      for (std::uint32_t x : *list) h = hash_mix(h, x);
     }
   }
   return h;

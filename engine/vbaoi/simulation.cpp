@@ -36,13 +36,9 @@ constexpr std::size_t kExamples = 3;  // grouping violations kept per policy
 constexpr std::uint64_t kWalkStream = 0x57414C4B;     // "WALK"
 constexpr std::uint64_t kNetworkStream = 0x4E455457;  // "NETW"
 
-std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
-  std::uint64_t s = a ^ (b * 0x9E3779B97F4A7C15ULL);
-  return splitmix64(s);
-}
 // A uniform [0, 1) draw from a hash: the same message identity gets the same draw in any order.
 double hashed_uniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b, std::uint64_t c) {
-  return static_cast<double>(mix(mix(mix(seed, a), b), c) >> 11) * 0x1.0p-53;
+  return static_cast<double>(hash_mix(hash_mix(hash_mix(seed, a), b), c) >> 11) * 0x1.0p-53;
 }
 
 bool contains(const std::vector<std::uint32_t>& v, std::uint32_t x) { return std::binary_search(v.begin(), v.end(), x); }
@@ -466,7 +462,7 @@ class Simulation {
       if (!contains(cl.held, cl.node)) ++r_.render_violations;
       if (!ring_contains(node.coords, cl.pos, 1e-6)) ++r_.outside_node;
       r_.listened_channels.push_back(static_cast<double>(subs_[c].size()));
-      digest_ = mix(mix(digest_, (k << 20) ^ c), mix(cl.node, mix(std::bit_cast<std::uint64_t>(cl.pos.x),
+      digest_ = hash_mix(hash_mix(digest_, (k << 20) ^ c), hash_mix(cl.node, hash_mix(std::bit_cast<std::uint64_t>(cl.pos.x),
                                                                    std::bit_cast<std::uint64_t>(cl.pos.y))));
     }
     if (k % o_.check_stride == 0 && los_ && active.size() > 1) check(k, active);
