@@ -88,6 +88,39 @@ void BM_EmbreeSingleAgainstPackets(benchmark::State& state) {
 }
 BENCHMARK(BM_EmbreeSingleAgainstPackets)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The report's oracle query on the CLI's default city (every 30th frame of its street walk, so
+// the candidates change as they do along a walk), each query followed by the same rays re-cast
+// bare in packets on as many threads (EmbreeScene::cast_packet, as the report's
+// bare_embree_packet_rays_per_second): the two interleaved, so the machine's load swings touch
+// both alike. Arg: threads. Counters: oracle_rays_per_s (whole queries: planning, casting,
+// sifting, merging), bare_packet_rays_per_s, and their ratio oracle_vs_bare (issue 17's
+// target: at least 0.9).
+void BM_OracleDefaultCityWalk(benchmark::State& state) {
+  static const Scene scene = generators::make_city("default", 1, nlohmann::json::object());
+  static const RayOracle oracle(scene);
+  static const CameraPath walk = generators::street_walk(scene, {}, 1);
+  SamplingOptions options;
+  options.threads = int(state.range(0));
+  std::vector<RayLog> logs;
+  for (std::size_t f = 0; f < walk.frames.size(); f += 30) oracle.witness(walk.frames[f], options, &logs.emplace_back());
+  std::uint64_t rays = 0;
+  double oracle_seconds = 0.0, bare_seconds = 0.0;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const OracleResult r = oracle.witness(walk.frames[30 * k], options);
+    const double bare_rate = oracle.bare_embree_rays_per_second(logs[k], options.threads, 0.0, true);
+    rays += r.rays_cast;
+    oracle_seconds += r.elapsed_seconds;
+    bare_seconds += double(logs[k].rays.size()) / bare_rate;
+    k = (k + 1) % logs.size();
+    benchmark::DoNotOptimize(r.witnessed.data());
+  }
+  state.counters["oracle_rays_per_s"] = double(rays) / std::max(oracle_seconds, 1e-9);
+  state.counters["bare_packet_rays_per_s"] = double(rays) / std::max(bare_seconds, 1e-9);
+  state.counters["oracle_vs_bare"] = bare_seconds / std::max(oracle_seconds, 1e-9);
+}
+BENCHMARK(BM_OracleDefaultCityWalk)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Args: threads; 0 = the full render, 1 = the full render and a comparison with a PVS holding
 // every other object (the PVS-only rays where a culled object shows).
 void BM_PixelOracleDefaultCity(benchmark::State& state) {

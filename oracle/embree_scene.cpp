@@ -33,13 +33,6 @@ void keep_allowed_objects(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RayLog::Ray to_float(Vec3 o, Vec3 d, double t_near, double t_far) {
-  return {{float(o.x), float(o.y), float(o.z)},
-          {float(d.x), float(d.y), float(d.z)},
-          float(t_near),
-          std::nextafter(float(t_far), std::numeric_limits<float>::infinity())};
-}
-
 RTCRayHit embree_ray(const RayLog::Ray& r) {
   RTCRayHit rh{};
   rh.ray.org_x = r.org[0], rh.ray.org_y = r.org[1], rh.ray.org_z = r.org[2];

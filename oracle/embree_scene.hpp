@@ -9,6 +9,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -25,9 +27,19 @@ struct EmbreeHit {
   bool hit() const { return triangle != RTC_INVALID_GEOMETRY_ID; }
 };
 
+// The next float above `x`, as std::nextafter(x, +inf) gives it; positive finite values (every
+// planned ray's t_far) take the integer step inline, the rest go to libm. Inline: once per ray.
+inline float next_float_up(float x) {
+  if (x > 0.0f && x < std::numeric_limits<float>::max()) return std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) + 1u);
+  return std::nextafter(x, std::numeric_limits<float>::infinity());
+}
+
 // A ray as Embree takes it: `origin_local` relative to the mesh's origin, rounded to floats;
 // t_far rounded up by one ulp (rounding it down could stop a ray just short of its sample's face).
-RayLog::Ray to_float(Vec3 origin_local, Vec3 direction, double t_near, double t_far);
+// Inline: the oracle converts every ray it casts.
+inline RayLog::Ray to_float(Vec3 o, Vec3 d, double t_near, double t_far) {
+  return {{float(o.x), float(o.y), float(o.z)}, {float(d.x), float(d.y), float(d.z)}, float(t_near), next_float_up(float(t_far))};
+}
 RTCRayHit embree_ray(const RayLog::Ray& r);
 
 class EmbreeScene {

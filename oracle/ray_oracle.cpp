@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <thread>
@@ -15,6 +16,7 @@
 #include "core/errors.hpp"
 #include "oracle/embree_scene.hpp"
 #include "oracle/ray_plan.hpp"
+#include "oracle/sample_cache.hpp"
 #include "oracle/view_transform.hpp"
 
 namespace cullcheck::oracle {
@@ -23,19 +25,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 }  // namespace
-
-struct RayOracle::Impl {
-  const Scene& scene;
-  EmbreeScene embree;
-
-  explicit Impl(const Scene& s) : scene(s), embree(s) {}
-};
-
-RayOracle::RayOracle(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
-RayOracle::~RayOracle() = default;
-const TriangleMesh& RayOracle::mesh() const { return impl_->embree.mesh(); }
-const Scene& RayOracle::scene() const { return impl_->scene; }
-const EmbreeScene& RayOracle::embree() const { return impl_->embree; }
 
 namespace {
 
@@ -76,7 +65,44 @@ constexpr std::size_t kCellsPerUnit = 2048;
 // Units merged per wave: the results of one wave are held at once.
 constexpr std::size_t kWave = 1024;
 
+// A query's scratch: a sifter per thread and the wave's result slots. Kept by the oracle between
+// queries (a walk asks hundreds), so their memory is allocated once rather than every frame.
+struct QueryScratch {
+  std::vector<Sifter> sifters;
+  std::vector<UnitResult> slots;
+};
+
 }  // namespace
+
+struct RayOracle::Impl {
+  const Scene& scene;
+  EmbreeScene embree;
+  // Surface samples kept across queries (they do not depend on the camera); thread-safe.
+  mutable SampleCache samples;
+  // Scratch of finished queries, taken by the next ones (concurrent queries each take their own).
+  mutable std::mutex scratch_mutex;
+  mutable std::vector<std::unique_ptr<QueryScratch>> scratch;
+
+  explicit Impl(const Scene& s) : scene(s), embree(s), samples(s, embree.mesh()) {}
+
+  std::unique_ptr<QueryScratch> take_scratch() const {
+    const std::lock_guard<std::mutex> lock(scratch_mutex);
+    if (scratch.empty()) return std::make_unique<QueryScratch>();
+    std::unique_ptr<QueryScratch> s = std::move(scratch.back());
+    scratch.pop_back();
+    return s;
+  }
+  void give_back(std::unique_ptr<QueryScratch> s) const {
+    const std::lock_guard<std::mutex> lock(scratch_mutex);
+    scratch.push_back(std::move(s));
+  }
+};
+
+RayOracle::RayOracle(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+RayOracle::~RayOracle() = default;
+const TriangleMesh& RayOracle::mesh() const { return impl_->embree.mesh(); }
+const Scene& RayOracle::scene() const { return impl_->scene; }
+const EmbreeScene& RayOracle::embree() const { return impl_->embree; }
 
 OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& options, RayLog* log,
                                 TriangleWitnesses* triangles) const {
@@ -87,7 +113,7 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   const TriangleMesh& mesh = im.embree.mesh();
   OracleResult result;
   result.density = options;
-  const RayPlan plan(im.scene, mesh, camera, options);
+  const RayPlan plan(im.scene, mesh, camera, options, &im.samples);
   const ViewTransform& volume = plan.cone().transform();
   const std::size_t objects = plan.objects(), cells = plan.cells();
   const std::size_t units = objects + (cells + kCellsPerUnit - 1) / kCellsPerUnit;
@@ -161,12 +187,17 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   // witnessed by the first ray in plan order whose first hit lies on it inside the view volume,
   // whatever the thread count.
   const int threads = int(std::min<std::size_t>(std::size_t(options.threads), std::max<std::size_t>(1, units)));
-  std::vector<Sifter> sifters(static_cast<std::size_t>(threads));
+  // Each sifter's counts are back at zero after every unit (Sifter::reset), so kept ones can be reused.
+  std::unique_ptr<QueryScratch> scratch = im.take_scratch();
+  std::vector<Sifter>& sifters = scratch->sifters;
+  if (sifters.size() < std::size_t(threads)) sifters.resize(std::size_t(threads));
   for (Sifter& s : sifters) {
-    s.found.assign(mesh.object_ids.size(), 0);
-    if (triangles) s.triangle_found.assign(mesh.triangles.size(), 0);
+    s.tally = PlanTally{};
+    if (s.found.size() != mesh.object_ids.size()) s.found.assign(mesh.object_ids.size(), 0);
+    if (triangles && s.triangle_found.size() != mesh.triangles.size()) s.triangle_found.assign(mesh.triangles.size(), 0);
   }
-  std::vector<UnitResult> slots(std::min(units, kWave));
+  std::vector<UnitResult>& slots = scratch->slots;
+  if (slots.size() < std::min(units, kWave)) slots.resize(std::min(units, kWave));
   std::vector<std::uint8_t> witness_rays(mesh.object_ids.size(), 0);  // per object index, found so far
   for (std::size_t wave = 0; wave < units; wave += kWave) {
     const std::size_t wave_end = std::min(units, wave + kWave);
@@ -208,6 +239,7 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
     result.capped_objects += s.tally.capped;
     result.grazing_rays += s.tally.grazing;
   }
+  im.give_back(std::move(scratch));
   for (const auto& [id, ray] : result.witnesses) result.witnessed.push_back(id);
   result.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "oracle/surface_samples.hpp"
 
 namespace cullcheck::oracle {
 namespace {
-
-// A surface ray ends this far beyond its sample point (relative, plus absolute metres): far
-// enough that float rounding cannot make it stop short of the sample's face, near enough that
-// a ray grazing past the sample's edge does not go on to witness what lies behind it.
-constexpr double kBeyondRelative = 1e-5;
-constexpr double kBeyondAbsolute = 1e-5;
 
 // The graze distance's floor relative to a point's distance from the mesh origin: 1e-6 is about
 // 16 float ulps (2^-24 ~ 6e-8), so Embree sees the ray on the intended side of the edge.
@@ -27,41 +25,146 @@ bool silhouette(int a, int b) { return a == 0 || b == 0 || a != b; }
 ViewCone::ViewCone(const Camera& c)
     : transform_(c), forward_(transform_.forward()), near_(c.near), far_(c.far), orthographic_(c.orthographic()) {}
 
-bool ViewCone::extent(Vec3 d, double& t_near, double& t_far) const {
-  if (orthographic_) {
-    if (!(d == forward_)) return false;
-    t_near = 0.0, t_far = far_ - near_;
-    return true;
-  }
-  return transform_.extent(d, t_near, t_far);
-}
-
-bool ViewCone::ray_toward(Vec3 p, PlannedRay& out, bool to_far) const {
-  if (orthographic_) {
-    const Clip c = transform_.clip(p);  // w = 1: x and y are the view box's normalised coordinates
-    if (std::abs(c.x) > 1.0 || std::abs(c.y) > 1.0) return false;
-    const double depth = c.z - near_;  // from the near plane
-    if (!(depth >= 0.0)) return false;  // before the near plane: clipped
-    out.origin = p - forward_ * depth;
-    out.direction = forward_;
-    out.t_near = 0.0;
-    out.t_far = far_ - near_;
-    if (!to_far) out.t_far = std::min(out.t_far, depth * (1.0 + kBeyondRelative) + kBeyondAbsolute);
-  } else {
-    const Vec3 to = p - transform_.eye();
-    const double distance = length(to);
-    if (!(distance > 0.0)) return false;
-    out.origin = transform_.eye();
-    out.direction = to * (1.0 / distance);
-    if (!extent(out.direction, out.t_near, out.t_far)) return false;
-    if (!to_far) out.t_far = std::min(out.t_far, distance * (1.0 + kBeyondRelative) + kBeyondAbsolute);
-  }
+bool ViewCone::ortho_ray_toward(Vec3 p, PlannedRay& out, bool to_far) const {
+  const Clip c = transform_.clip(p);  // w = 1: x and y are the view box's normalised coordinates
+  if (std::abs(c.x) > 1.0 || std::abs(c.y) > 1.0) return false;
+  const double depth = c.z - near_;  // from the near plane
+  if (!(depth >= 0.0)) return false;  // before the near plane: clipped
+  out.origin = p - forward_ * depth;
+  out.direction = forward_;
+  out.t_near = 0.0;
+  out.t_far = far_ - near_;
+  if (!to_far) out.t_far = std::min(out.t_far, depth * (1.0 + kBeyondRelative) + kBeyondAbsolute);
   out.target = p;
   return out.t_far > out.t_near;
 }
 
-RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options)
+namespace {
+
+// out[i] = sqrt(in[i]) and out[i] = numerator / in[i] over a run: correctly rounded IEEE
+// operations, so two lanes at a time (SSE2, on every x86-64) give the scalar results bit for bit.
+void sqrt_run(const double* in, double* out, std::size_t n) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  for (; i + 2 <= n; i += 2) _mm_storeu_pd(out + i, _mm_sqrt_pd(_mm_loadu_pd(in + i)));
+#endif
+  for (; i < n; ++i) out[i] = std::sqrt(in[i]);
+}
+void divide_run(double numerator, const double* in, double* out, std::size_t n) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  const __m128d top = _mm_set1_pd(numerator);
+  for (; i + 2 <= n; i += 2) _mm_storeu_pd(out + i, _mm_div_pd(top, _mm_loadu_pd(in + i)));
+#endif
+  for (; i < n; ++i) out[i] = numerator / in[i];
+}
+
+}  // namespace
+
+ViewCone::BoxSettles ViewCone::settles(const Box3& box) const {
+  BoxSettles out;
+  if (orthographic_ || transform_.omnidirectional() || !(box.lo.x <= box.hi.x)) return out;
+  const Vec3 eye = transform_.eye();
+  const auto& planes = transform_.planes();
+  // Per plane n (through the eye), over the box: the least value of n . (p - eye) (at the corner
+  // the gradient points away from) against the largest sum of |n_k (p - eye)_k|, which bounds
+  // the rounding of n . d for every d ray_toward computes toward a point of the box (each term
+  // of n . d carries a relative error of a few 1e-16; 1e-9 leaves a wide margin).
+  const Vec3 far_side{std::max(std::abs(box.lo.x - eye.x), std::abs(box.hi.x - eye.x)),
+                      std::max(std::abs(box.lo.y - eye.y), std::abs(box.hi.y - eye.y)),
+                      std::max(std::abs(box.lo.z - eye.z), std::abs(box.hi.z - eye.z))};
+  auto least = [&](Vec3 n) {
+    const Vec3 corner{n.x >= 0 ? box.lo.x : box.hi.x, n.y >= 0 ? box.lo.y : box.hi.y, n.z >= 0 ? box.lo.z : box.hi.z};
+    return dot(n, corner - eye);
+  };
+  auto magnitude = [&](Vec3 n) { return std::abs(n.x) * far_side.x + std::abs(n.y) * far_side.y + std::abs(n.z) * far_side.z; };
+  constexpr double kMargin = 1e-9;
+  out.sides = true;
+  for (int i = 0; i < 4; ++i) out.sides = out.sides && least(planes[i].n) > kMargin * magnitude(planes[i].n);
+  // Ending at the point: distance (1 + kBeyondRelative) + kBeyondAbsolute <= far / along, where
+  // along = depth / distance. With depth <= D (the box's largest depth) and distance >= r (its
+  // least distance from the eye), far r / D >= r (1 + kBeyondRelative) + kBeyondAbsolute is
+  // enough, and the margin covers the rounding of both sides.
+  const Vec3 depth_n = planes[4].n;
+  const double deepest = -least(depth_n * -1.0);
+  const double dx = std::max({box.lo.x - eye.x, 0.0, eye.x - box.hi.x}), dy = std::max({box.lo.y - eye.y, 0.0, eye.y - box.hi.y}),
+               dz = std::max({box.lo.z - eye.z, 0.0, eye.z - box.hi.z});
+  const double nearest = std::sqrt(dx * dx + dy * dy + dz * dz);
+  out.before_far = out.sides && deepest > 0.0 && nearest > 0.0 &&
+                   far_ * nearest / deepest * (1.0 - kMargin) > nearest * (1.0 + kBeyondRelative) + kBeyondAbsolute + kMargin * magnitude(depth_n);
+  return out;
+}
+
+void ViewCone::rays_toward(const std::vector<Vec3>& points, const PlannedRay& prototype, std::vector<PlannedRay>& out,
+                           const Box3* within, bool to_far) const {
+  // Rays are written field by field into their slots (a whole ray built on the stack and copied
+  // stalls on its own stores), then the slots left over are cut off.
+  const std::size_t before = out.size();
+  out.resize(before + points.size(), prototype);
+  PlannedRay* next = out.data() + before;
+  if (orthographic_) {
+    for (Vec3 p : points) next += ray_toward(p, *next, to_far) ? 1 : 0;
+    out.resize(std::size_t(next - out.data()));
+    return;
+  }
+  // ray_toward's arithmetic, operation for operation, in loops over a run of points: each loop's
+  // iterations are independent, so the square roots and divisions of neighbouring points overlap
+  // (and go two to an instruction), where one point at a time waits on each in turn.
+  const Vec3 eye = transform_.eye();
+  const bool omnidirectional = transform_.omnidirectional();
+  const BoxSettles settled = within ? settles(*within) : BoxSettles{};
+  const bool far_needed = to_far || !settled.before_far;
+  const auto& planes = transform_.planes();
+  const double near = transform_.near(), far = transform_.far();
+  constexpr std::size_t kRun = 64;
+  double squared[kRun], distance[kRun], inverse[kRun], along[kRun], t_near[kRun], t_far[kRun];
+  bool inside[kRun];
+  Vec3 direction[kRun];
+  for (std::size_t start = 0; start < points.size(); start += kRun) {
+    const std::size_t m = std::min(kRun, points.size() - start);
+    const Vec3* p = points.data() + start;
+    for (std::size_t i = 0; i < m; ++i) squared[i] = dot(p[i] - eye, p[i] - eye);
+    sqrt_run(squared, distance, m);
+    divide_run(1.0, distance, inverse, m);
+    for (std::size_t i = 0; i < m; ++i) direction[i] = (p[i] - eye) * inverse[i];
+    if (omnidirectional) {
+      for (std::size_t i = 0; i < m; ++i) inside[i] = true, t_near[i] = 0.0, t_far[i] = far;
+    } else {
+      if (settled.sides) {
+        for (std::size_t i = 0; i < m; ++i) along[i] = dot(planes[4].n, direction[i]), inside[i] = along[i] > 0.0;
+      } else {
+        for (std::size_t i = 0; i < m; ++i) {
+          const Vec3 d = direction[i];
+          along[i] = dot(planes[4].n, d);
+          inside[i] = !(dot(planes[0].n, d) < 0.0) & !(dot(planes[1].n, d) < 0.0) & !(dot(planes[2].n, d) < 0.0) &
+                      !(dot(planes[3].n, d) < 0.0) & (along[i] > 0.0);
+        }
+      }
+      divide_run(near, along, t_near, m);
+      if (far_needed)
+        divide_run(far, along, t_far, m);
+      else
+        for (std::size_t i = 0; i < m; ++i) t_far[i] = std::numeric_limits<double>::infinity();  // the point's end is the nearer
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+      if (!(distance[i] > 0.0) || !inside[i]) continue;
+      const double t = to_far ? t_far[i] : std::min(t_far[i], distance[i] * (1.0 + kBeyondRelative) + kBeyondAbsolute);
+      if (!(t > t_near[i])) continue;
+      next->origin = eye;
+      next->direction = direction[i];
+      next->t_near = t_near[i];
+      next->t_far = t;
+      next->target = p[i];
+      ++next;
+    }
+  }
+  out.resize(std::size_t(next - out.data()));
+}
+
+RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options,
+                 SampleCache* cache)
     : scene_(scene), mesh_(mesh), camera_(camera), options_(options), cone_(camera) {
+  if (cache) cache_.emplace(cache->at(options));
   const int n = options.frustum_resolution;
   if (n <= 0) return;
   if (camera.omnidirectional()) {
@@ -82,35 +185,42 @@ std::size_t RayPlan::object_rays(std::uint32_t index, std::vector<PlannedRay>& o
   const Box3& bounds = building ? scene_.buildings[index].bounds : scene_.meshes[index - scene_.buildings.size()].bounds;
   if (!cone_.transform().may_meet(bounds)) return 0;
   ++tally.candidates;
-  if (building)
+  const SurfaceSamples* kept = &samples;
+  if (cache_)
+    kept = &cache_->samples(index, samples);
+  else if (building)
     surface_samples(scene_.buildings[index], mesh_.roofs[index], options_, samples);
   else
     surface_samples(scene_.meshes[index - scene_.buildings.size()], options_, samples);
-  tally.capped += samples.capped ? 1 : 0;
+  tally.capped += kept->capped ? 1 : 0;
   PlannedRay ray{};
   ray.aimed_at = index;
   ray.source = RaySource::surface_sample;
   const std::size_t before = out.size();
-  for (Vec3 p : samples.points)
-    if (cone_.ray_toward(p, ray)) out.push_back(ray);
+  cone_.rays_toward(kept->points, ray, out, &bounds);
   const std::size_t surface = out.size() - before;
   if (options_.graze_offset > 0.0) {
-    if (building) plan_grazing(index, out, tally);
-    else plan_mesh_grazing(index, out, tally);
+    // The points passed just beside every silhouette edge, then their rays planned as one run;
+    // the surface samples' scratch holds them (those rays are planned).
+    std::vector<Vec3>& aims = samples.points;
+    aims.clear();
+    if (building) plan_grazing(index, aims);
+    else plan_mesh_grazing(index, aims);
+    ray.source = RaySource::grazing;
+    const std::size_t before_grazing = out.size();
+    cone_.rays_toward(aims, ray, out, nullptr, /*to_far=*/true);
+    tally.grazing += out.size() - before_grazing;
   }
   return surface;
 }
 
-// Rays just either side of a silhouette edge p0-p1 of object `index`, sampled along it: the
-// slivers where a float rounding error would show or hide what lies behind the edge.
-void RayPlan::graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out, PlanTally& tally) const {
+// The points just either side of a silhouette edge p0-p1, sampled along it, that grazing rays
+// aim at: the slivers where a float rounding error would show or hide what lies behind the edge.
+void RayPlan::graze_along(Vec3 p0, Vec3 p1, std::vector<Vec3>& aims) const {
   const ViewTransform& view = cone_.transform();
   const bool ortho = view.orthographic();
   const Vec3 eye = view.eye(), forward = view.forward();
   const double ortho_size = ortho ? std::max(camera_.ortho_width, camera_.ortho_height) : 0.0;
-  PlannedRay ray{};
-  ray.aimed_at = index;
-  ray.source = RaySource::grazing;
   const Vec3 edge = p1 - p0;
   const double len = length(edge);
   if (!(len > 0.0)) return;
@@ -124,17 +234,13 @@ void RayPlan::graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<Pla
     if (!(side_len > 1e-12 * length(view_dir) * len)) continue;  // the edge seen end-on: no sliver
     const double reach = ortho ? ortho_size : length(view_dir);
     const double offset = std::max(options_.graze_offset * reach, kGrazeFloorRelative * length(p - mesh_.origin));
-    for (double sign : {-1.0, 1.0})
-      if (cone_.ray_toward(p + side * (sign * offset / side_len), ray, /*to_far=*/true)) {
-        out.push_back(ray);
-        ++tally.grazing;
-      }
+    for (double sign : {-1.0, 1.0}) aims.push_back(p + side * (sign * offset / side_len));
   }
 }
 
 // A building's silhouette: its vertical edges between a wall the eye sees and one it does not,
 // and its roof edges between the roof and a wall on the other side of the eye's view.
-void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const {
+void RayPlan::plan_grazing(std::uint32_t index, std::vector<Vec3>& aims) const {
   const Building& b = scene_.buildings[index];
   const ViewTransform& view = cone_.transform();
   const bool ortho = view.orthographic();
@@ -152,15 +258,15 @@ void RayPlan::plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out, Pl
   const int roof = facing(ortho ? -forward.z : eye.z - b.height);
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 v = ring[k], next = ring[(k + 1) % n];
-    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along(index, {v.x, v.y, 0.0}, {v.x, v.y, b.height}, out, tally);
-    if (silhouette(wall[k], roof)) graze_along(index, {v.x, v.y, b.height}, {next.x, next.y, b.height}, out, tally);
+    if (silhouette(wall[(k + n - 1) % n], wall[k])) graze_along({v.x, v.y, 0.0}, {v.x, v.y, b.height}, aims);
+    if (silhouette(wall[k], roof)) graze_along({v.x, v.y, b.height}, {next.x, next.y, b.height}, aims);
   }
 }
 
 // A mesh object's silhouette: its boundary edges, and the edges whose triangles do not all face
 // the eye the same way (or one is seen edge-on). Triangles are two-sided, so a facing is a side
 // of the triangle's plane, whichever way its vertices wind.
-void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const {
+void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<Vec3>& aims) const {
   const std::size_t k = index - scene_.buildings.size();
   const MeshObject& m = scene_.meshes[k];
   const ViewTransform& view = cone_.transform();
@@ -175,7 +281,7 @@ void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& ou
     bool rim = e.triangles.size() == 1;
     const int first = facing_of(e.triangles[0]);
     for (std::size_t i = 1; i < e.triangles.size() && !rim; ++i) rim = silhouette(first, facing_of(e.triangles[i]));
-    if (rim || first == 0) graze_along(index, e.a, e.b, out, tally);
+    if (rim || first == 0) graze_along(e.a, e.b, aims);
   }
 }
 

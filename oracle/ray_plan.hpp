@@ -29,13 +29,16 @@
 #pragma once
 
 #include <cstdint>
+#include <algorithm>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/camera.hpp"
 #include "core/scene.hpp"
 #include "oracle/mesh.hpp"
 #include "oracle/ray_oracle.hpp"
+#include "oracle/sample_cache.hpp"
 #include "oracle/sampling.hpp"
 #include "oracle/splitmix64.hpp"
 #include "oracle/surface_samples.hpp"
@@ -67,11 +70,27 @@ class ViewCone {
   // origin on the near plane; `d` must be forward() (anything else gives false).
   bool extent(Vec3 d, double& t_near, double& t_far) const;
   // The ray toward sample point `p`, or false when it cannot meet p inside the view volume.
-  // It ends just beyond p, or with `to_far`, at the far plane.
+  // It ends just beyond p, or with `to_far`, at the far plane. Inline: once per planned ray.
   bool ray_toward(Vec3 p, PlannedRay& out, bool to_far = false) const;
+  // ray_toward(p, ray, to_far) for each of `points` in order, appending the rays it gives (copies
+  // of `prototype` with the ray's fields set) to `out`. The same rays bit for bit, computed a run
+  // of points at a time so that the square roots and divisions of neighbouring points overlap.
+  // With `within`, a box holding every point, tests that box settles for all of them are skipped.
+  void rays_toward(const std::vector<Vec3>& points, const PlannedRay& prototype, std::vector<PlannedRay>& out,
+                   const Box3* within = nullptr, bool to_far = false) const;
   Vec3 forward() const { return forward_; }
+  // What holds for the ray toward every point of `box` (perspective cameras), by a margin far
+  // above the rounding of ray_toward's arithmetic, so that skipping the test changes no bit:
+  // every direction passes the four side planes; every surface ray ends at its point (the
+  // distance beyond it is shorter than the extent to the far plane).
+  struct BoxSettles {
+    bool sides = false, before_far = false;
+  };
+  BoxSettles settles(const Box3& box) const;
 
  private:
+  bool ortho_ray_toward(Vec3 p, PlannedRay& out, bool to_far) const;
+
   ViewTransform transform_;
   Vec3 forward_;
   double near_, far_;
@@ -89,8 +108,10 @@ struct PlanTally {
 // they are the plan's rays in plan order.
 class RayPlan {
  public:
-  // `mesh` is triangulate(scene): the plan samples the oracle's own roofs.
-  RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options);
+  // `mesh` is triangulate(scene): the plan samples the oracle's own roofs. With `cache`, surface
+  // samples are taken from it (and kept there) instead of computed for this plan alone.
+  RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options,
+          SampleCache* cache = nullptr);
   std::size_t objects() const { return scene_.object_count(); }
   std::size_t cells() const { return std::size_t(columns_) * std::size_t(rows_); }
   // Appends object `index`'s rays to `out`: its surface samples, then its grazing rays (none
@@ -103,9 +124,10 @@ class RayPlan {
   const ViewCone& cone() const { return cone_; }
 
  private:
-  void plan_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const;
-  void plan_mesh_grazing(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally) const;
-  void graze_along(std::uint32_t index, Vec3 p0, Vec3 p1, std::vector<PlannedRay>& out, PlanTally& tally) const;
+  // The points the grazing rays aim at, in plan order, appended to `aims`.
+  void plan_grazing(std::uint32_t index, std::vector<Vec3>& aims) const;
+  void plan_mesh_grazing(std::uint32_t index, std::vector<Vec3>& aims) const;
+  void graze_along(Vec3 p0, Vec3 p1, std::vector<Vec3>& aims) const;
   void plan_cell(std::size_t cell, SplitMix64& rng, std::vector<PlannedRay>& out) const;
 
   const Scene& scene_;
@@ -113,7 +135,36 @@ class RayPlan {
   const Camera& camera_;
   const SamplingOptions& options_;
   ViewCone cone_;
+  std::optional<SampleCache::AtDensity> cache_;
   int columns_ = 0, rows_ = 0;
 };
+
+// A ray ends this far beyond its sample point (relative, plus absolute metres): far enough that
+// float rounding cannot make it stop short of the sample's face, near enough that a ray grazing
+// past the sample's edge does not go on to witness what lies behind it.
+inline constexpr double kBeyondRelative = 1e-5;
+inline constexpr double kBeyondAbsolute = 1e-5;
+
+inline bool ViewCone::extent(Vec3 d, double& t_near, double& t_far) const {
+  if (orthographic_) {
+    if (!(d == forward_)) return false;
+    t_near = 0.0, t_far = far_ - near_;
+    return true;
+  }
+  return transform_.extent(d, t_near, t_far);
+}
+
+[[gnu::always_inline]] inline bool ViewCone::ray_toward(Vec3 p, PlannedRay& out, bool to_far) const {
+  if (orthographic_) return ortho_ray_toward(p, out, to_far);
+  const Vec3 to = p - transform_.eye();
+  const double distance = length(to);
+  if (!(distance > 0.0)) return false;
+  out.origin = transform_.eye();
+  out.direction = to * (1.0 / distance);
+  if (!transform_.extent(out.direction, out.t_near, out.t_far)) return false;
+  if (!to_far) out.t_far = std::min(out.t_far, distance * (1.0 + kBeyondRelative) + kBeyondAbsolute);
+  out.target = p;
+  return out.t_far > out.t_near;
+}
 
 }  // namespace cullcheck::oracle

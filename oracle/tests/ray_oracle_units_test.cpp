@@ -5,11 +5,16 @@
 // volume.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <map>
 
 #include "oracle/embree_scene.hpp"
 #include "oracle/ray_oracle.hpp"
 #include "oracle/ray_plan.hpp"
+#include "oracle/splitmix64.hpp"
 #include "test_scenes.hpp"
 
 namespace cullcheck::oracle {
@@ -71,6 +76,76 @@ TEST(RayOracleUnits, EveryRayOnAnyThreadCountWitnessesWithTheRayOneAtATimeFinds)
     objects += reference.size();
   }
   EXPECT_EQ(objects, 97u);  // witnessed over the twelve views (pinned: the views are not empty)
+}
+
+// What the oracle hands Embree is exactly the plan's rays in plan order, rounded by to_float:
+// however the casting path plans them (samples kept across queries, rays planned a run of points
+// at a time), not one bit of one ray may differ from ray_toward's, point by point.
+TEST(RayOracleUnits, TheRaysCastAreThePlansRaysBitForBit) {
+  std::uint64_t compared = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    const RandomCity city = random_city(seed);
+    const RayOracle oracle(city.scene);
+    const TriangleMesh& mesh = oracle.mesh();
+    SamplingOptions options;
+    options.stop_when_witnessed = false;
+    const RayPlan plan(oracle.scene(), mesh, city.camera, options);
+    // The reference: each candidate's surface samples computed afresh and their rays planned one
+    // point at a time by ray_toward, then its grazing rays and the stratified cells as planned.
+    std::vector<PlannedRay> rays, object;
+    PlanTally tally;
+    SurfaceSamples samples;
+    for (std::uint32_t i = 0; i < plan.objects(); ++i) {
+      object.clear();
+      const std::size_t surface = plan.object_rays(i, object, tally, samples);
+      if (object.empty()) continue;
+      const Scene& scene = oracle.scene();
+      const SurfaceSamples fresh = i < scene.buildings.size() ? surface_samples(scene.buildings[i], mesh.roofs[i], options)
+                                                              : surface_samples(scene.meshes[i - scene.buildings.size()], options);
+      PlannedRay ray{};
+      ray.aimed_at = i;
+      ray.source = RaySource::surface_sample;
+      std::size_t kept = 0;
+      for (Vec3 p : fresh.points)
+        if (plan.cone().ray_toward(p, ray)) rays.push_back(ray), ++kept;
+      ASSERT_EQ(kept, surface) << "object index " << i;
+      rays.insert(rays.end(), object.begin() + std::ptrdiff_t(surface), object.end());
+    }
+    plan.cell_rays(0, plan.cells(), rays);
+    for (int threads : {1, 3}) {
+      options.threads = threads;
+      RayLog log;
+      for (int query = 0; query < 2; ++query) {  // the second query reads whatever the first cached
+        log.rays.clear();
+        oracle.witness(city.camera, options, &log);
+        SCOPED_TRACE("random_city(" + std::to_string(seed) + "), " + city.kind + ", " + std::to_string(threads) + " threads, query " +
+                     std::to_string(query));
+        ASSERT_EQ(log.rays.size(), rays.size());
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+          const RayLog::Ray want = to_float(rays[k].origin - mesh.origin, rays[k].direction, rays[k].t_near, rays[k].t_far);
+          ASSERT_EQ(std::memcmp(&want, &log.rays[k], sizeof want), 0) << "ray " << k << " of the plan";
+        }
+        compared += rays.size();
+      }
+    }
+  }
+  EXPECT_EQ(compared, 4u * 1093453u);  // every ray of the twelve plans, twice on each thread count
+}
+
+// to_float's one-ulp step up is std::nextafter's, on the values a plan gives and on every class
+// of float besides (zero, subnormals, the largest finite, infinity, NaN, negatives).
+TEST(RayOracleUnits, NextFloatUpIsNextafterTowardInfinity) {
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> values = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::min(),
+                               std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), inf, -inf, 1.0f, -1.0f,
+                               1e-30f, 3.5e7f, 100.00001f};
+  SplitMix64 rng(7);
+  for (int k = 0; k < 100000; ++k) values.push_back(std::bit_cast<float>(std::uint32_t(rng.next())));
+  for (float x : values) {
+    const float want = std::nextafter(x, inf), got = next_float_up(x);
+    if (std::isnan(x)) EXPECT_TRUE(std::isnan(got));
+    else EXPECT_EQ(std::bit_cast<std::uint32_t>(got), std::bit_cast<std::uint32_t>(want)) << "x = " << x;
+  }
 }
 
 TEST(RayOracleUnits, StoppingAtWitnessedObjectsSkipsRaysAndKeepsTheWitnessedSetOnTheseCities) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "oracle/ray_oracle.hpp"
+#include "oracle/surface_samples.hpp"
 #include "oracle/view_transform.hpp"
 #include "test_scenes.hpp"
 
@@ -208,6 +209,83 @@ TEST(GrazingRays, WitnessABuildingSeenOnlyThroughASliverBetweenTwoOccluders) { e
 
 TEST(GrazingRays, WitnessAMeshObjectSeenOnlyThroughASliverBetweenTwoMeshOccluders) {
   expect_sliver_witnessed_only_by_grazing(true);
+}
+
+// The ray toward each point, whether planned one point at a time (ray_toward) or as a run
+// (rays_toward, with the box the points lie in, so that tests the box settles are skipped).
+bool same_rays(const std::vector<PlannedRay>& a, const std::vector<PlannedRay>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (!(a[k].origin == b[k].origin && a[k].direction == b[k].direction && a[k].t_near == b[k].t_near &&
+          a[k].t_far == b[k].t_far && a[k].target == b[k].target && a[k].aimed_at == b[k].aimed_at && a[k].source == b[k].source))
+      return false;
+  return true;
+}
+
+TEST(RunPlanning, ABoxSettlesTheSidesAndTheFarEndOnlyWithAMarginToSpare) {
+  // Eye at 10 m looking east, hfov 60, vfov 40, near 1, far 100: 20 m ahead the view is 11.547 m
+  // to either side.
+  Camera c = level_camera({0, 0, 10}, 0.0, 60 * kDeg, 40 * kDeg);
+  c.near = 1.0, c.far = 100.0;
+  const ViewCone cone(c);
+  auto box = [](double x0, double y0, double x1, double y1, double z0, double z1) { return Box3{{x0, y0, z0}, {x1, y1, z1}}; };
+  const auto inside = cone.settles(box(19, -2, 21, 2, 8, 12));
+  EXPECT_TRUE(inside.sides);
+  EXPECT_TRUE(inside.before_far);
+  EXPECT_FALSE(cone.settles(box(19, 10, 21, 12, 8, 12)).sides);          // across the left plane
+  EXPECT_FALSE(cone.settles(box(19, -2, 21, 2, 8, 18)).sides);           // across the top plane
+  EXPECT_FALSE(cone.settles(box(19, -2, 21, 2, 2, 12)).sides);           // across the bottom plane
+  const auto deep = cone.settles(box(98, -2, 99.9995, 2, 8, 12));       // ends 0.5 mm before the far plane
+  EXPECT_TRUE(deep.sides);
+  EXPECT_FALSE(deep.before_far);  // the ray's 1e-5 relative overshoot reaches past far
+  EXPECT_TRUE(cone.settles(box(98, -2, 99.99, 2, 8, 12)).before_far);   // 1 cm before it: room enough
+  EXPECT_FALSE(cone.settles(box(-1, -1, 1, 1, 9, 11)).sides);            // around the eye
+  Camera omni = c;
+  omni.hfov = kTwoPi;
+  EXPECT_FALSE(ViewCone(omni).settles(box(19, -2, 21, 2, 8, 12)).sides);  // no planes to settle
+}
+
+// rays_toward gives ray_toward's rays bit for bit, with and without the box settling tests, on
+// every candidate of random cities (perspective, omnidirectional and orthographic views), for
+// surface rays (ending at their points) and rays run on to the far plane. The settled paths were
+// taken (counted).
+TEST(RunPlanning, RunsGiveTheRaysOfOnePointAtATimeBitForBit) {
+  std::size_t objects = 0, sides_settled = 0, far_settled = 0, rays = 0;
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    const RandomCity city = random_city(seed);
+    const RayOracle oracle(city.scene);
+    const RayPlan plan(city.scene, oracle.mesh(), city.camera, SamplingOptions{});
+    const ViewCone& cone = plan.cone();
+    for (std::size_t i = 0; i < city.scene.buildings.size(); ++i) {
+      const Building& b = city.scene.buildings[i];
+      if (!cone.transform().may_meet(b.bounds)) continue;
+      ++objects;
+      const std::vector<Vec3> points = surface_samples(b, oracle.mesh().roofs[i], SamplingOptions{}).points;
+      const ViewCone::BoxSettles settled = cone.settles(b.bounds);
+      sides_settled += settled.sides ? 1 : 0;
+      far_settled += settled.before_far ? 1 : 0;
+      for (bool to_far : {false, true}) {
+        PlannedRay prototype{};
+        prototype.aimed_at = std::uint32_t(i);
+        std::vector<PlannedRay> one, run, run_in_box;
+        PlannedRay ray = prototype;
+        for (Vec3 p : points)
+          if (cone.ray_toward(p, ray, to_far)) one.push_back(ray);
+        cone.rays_toward(points, prototype, run, nullptr, to_far);
+        cone.rays_toward(points, prototype, run_in_box, &b.bounds, to_far);
+        SCOPED_TRACE("random_city(" + std::to_string(seed) + "), " + city.kind + ", building " + std::to_string(b.id) +
+                     (to_far ? ", to the far plane" : ", to the point"));
+        EXPECT_TRUE(same_rays(one, run));
+        EXPECT_TRUE(same_rays(one, run_in_box));
+        rays += one.size();
+      }
+    }
+  }
+  // Pinned: the cities' candidates, how many boxes settled each test, the rays compared.
+  EXPECT_EQ(objects, 1449u);
+  EXPECT_EQ(sides_settled, 117u);
+  EXPECT_EQ(far_settled, 117u);
+  EXPECT_EQ(rays, 2441684u);
 }
 
 }  // namespace
