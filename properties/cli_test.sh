@@ -34,6 +34,10 @@ expect_error_names() {  # description text-that-must-appear
   if grep -q -- "$2" "$work/err"; then pass; else fail "$1: stderr lacks '$2'"; sed 's/^/  | /' "$work/err" | head -3; fi
 }
 
+json_field() {  # file python-expression-on-d
+  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
 for sub in generate cull verify report region cell vbaoi gate fuzz html merge radar; do expect_exit 0 "$sub --help" "$cc" "$sub" --help; done
 
 # generate: deterministic bytes, OBJ and path outputs.
@@ -73,6 +77,18 @@ grep -q "region shrink_former (radius 2.00 m)" "$work/out" && pass || fail "veri
 expect_exit 0 "report with a region radius sweep" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
   --method oh_os_conservative --claim-scenes 1 --region-sweep 0.5,2 -o "$work/sweep.json"
 grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_sweep in report.json"
+# Speed targets against a baseline report: its figures as "before"; a baseline that is not JSON is
+# refused before the run, and nothing is written.
+expect_exit 0 "report with a baseline" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
+  --method oh_os_conservative --claim-scenes 0 --baseline "$work/sweep.json" -o "$work/against.json"
+[ "$(json_field "$work/against.json" "[r['id'] for r in d['speed_targets']['rows'] if 'before' in r]")" = "['oracle_vs_bare_packets']" ] &&
+  pass || fail "report --baseline: the oracle row has no figure before"
+grep -q "oracle_vs_bare_packets" "$work/out" && pass || fail "report --baseline: no speed-targets table printed"
+printf 'not json' >"$work/not-a-report.json"
+expect_exit 2 "report: baseline not JSON" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
+  --method oh_os_conservative --claim-scenes 0 --baseline "$work/not-a-report.json" -o "$work/never.json"
+expect_error_names "report: baseline not JSON" "baseline"
+[ -e "$work/never.json" ] && fail "report: a report was written despite a bad baseline" || pass
 # A horizon resolution the engine cannot take is refused by the flag, before any run.
 expect_exit 2 "horizon bins not a power of two" "$cc" verify --generator manhattan --params '{"blocks_x":1,"blocks_y":1}' \
   --path-params '{"frames":1}' --horizon-bins 1000
@@ -200,9 +216,6 @@ grep -q "rdt: conservative: culled" "$work/out" && pass || fail "fuzz printed no
 # ---- The gate for outside subjects (README "The subject protocol") ----------------------------
 small=(--generator manhattan --seed 5 --params '{"blocks_x":2,"blocks_y":2}')
 walk=(--path-params '{"frames":12}')
-json_field() {  # file python-expression-on-d
-  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print($2)" "$1"
-}
 # A generated scene timeline (path parameter "timeline"): verify applies it, and --path-output
 # writes its events; out of range it is refused, naming the field.
 expect_exit 0 "verify with a generated timeline" "$cc" verify --generator manhattan --params '{"blocks_x":2,"blocks_y":2}' \

@@ -10,26 +10,6 @@
 namespace cullcheck {
 namespace {
 
-bool is_timing(const std::string& key) {
-  return key == "machine" || key.find("_ms") != std::string::npos || key.find("seconds") != std::string::npos ||
-         key.find("per_second") != std::string::npos;
-}
-
-nlohmann::json without_timings(const nlohmann::json& j) {
-  if (j.is_object()) {
-    nlohmann::json out = nlohmann::json::object();
-    for (auto it = j.begin(); it != j.end(); ++it)
-      if (!is_timing(it.key())) out[it.key()] = without_timings(it.value());
-    return out;
-  }
-  if (j.is_array()) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& v : j) out.push_back(without_timings(v));
-    return out;
-  }
-  return j;
-}
-
 struct SmallRun {
   SceneSource source;
   Scene scene;

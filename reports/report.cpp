@@ -318,7 +318,8 @@ nlohmann::json without_timings(const nlohmann::json& j) {
   for (const auto& [key, value] : j.items()) {
     const bool timed = key.find("_ms") != std::string::npos || key.rfind("ms_", 0) == 0 || key.find("seconds") != std::string::npos ||
                        key.find("per_second") != std::string::npos || key.find("speedup") != std::string::npos || key == "machine" ||
-                       key == "threads" || key.find("peak_rss") != std::string::npos;
+                       key == "threads" || key.find("peak_rss") != std::string::npos ||
+                       key == "speed_targets";  // derived from timings (and from fields kept here)
     if (!timed) out[key] = without_timings(value);
   }
   return out;

@@ -8,6 +8,7 @@
 #include "reports/report.hpp"
 #include "reports/shard_merge.hpp"
 #include "reports/slice_wise_table.hpp"
+#include "reports/speed_targets.hpp"
 #include "reports/subject_claims.hpp"
 #include "reports/vbaoi.hpp"
 #include "reports/view_cells.hpp"
@@ -62,6 +63,7 @@ AssembledReport assemble_report(const ReportParts& parts) {
   out.verdict = gate_verdict(parts.verification, parts.header["scene"]["replay_flags"].get<std::string>(), {},
                              section_gate_violations(out.document));
   out.document["gate"] = out.verdict.to_json();
+  out.document["speed_targets"] = speed_targets(out.document);
   return out;
 }
 

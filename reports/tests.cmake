@@ -56,3 +56,8 @@ add_executable(report_same ${CMAKE_CURRENT_LIST_DIR}/tests/report_same.cpp)
 target_link_libraries(report_same PRIVATE cullcheck_reports cullcheck_warnings)
 add_test(NAME shard_cli_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/tests/shard_cli_test.sh $<TARGET_FILE:cullcheck>
   $<TARGET_FILE:report_same> ${PROJECT_BINARY_DIR}/examples/subjects)
+
+# Issue 17's speed targets read off hand-made reports (report.json's "speed_targets").
+add_executable(speed_targets_test ${CMAKE_CURRENT_LIST_DIR}/tests/speed_targets_test.cpp)
+target_link_libraries(speed_targets_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME speed_targets_test COMMAND speed_targets_test)

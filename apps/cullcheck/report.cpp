@@ -26,6 +26,7 @@
 #include "reports/report.hpp"
 #include "reports/report_parts.hpp"
 #include "reports/scaling.hpp"
+#include "reports/speed_targets.hpp"
 #include "reports/shrinking_claims.hpp"
 #include "reports/online_claims.hpp"
 #include "reports/online_culling.hpp"
@@ -57,7 +58,7 @@ Runner add_report(CLI::App& app) {
     bool slice_table = false;
     SliceTableOptions slice_table_options;
     RegionFlags regions;
-    std::string methods = "all", output = "report.json", benchmark_json, junit, html, map_method;
+    std::string methods = "all", output = "report.json", benchmark_json, baseline, junit, html, map_method;
     std::optional<std::size_t> map_frame;
     Shard shard;
     std::size_t oracle_stride = 5;  // the main job (ci/setup.sh) checks every frame: about 0.06 s each on the default city
@@ -262,7 +263,14 @@ Runner add_report(CLI::App& app) {
   f->vbaoi.add(*sub, {10, 100, 1000}, "vbaoi-");
   sub->add_option("--benchmark-json", f->benchmark_json,
                      "Fold this Google Benchmark JSON output (bench_culling --benchmark_format=json) into the report");
+  sub->add_option("--baseline", f->baseline,
+                  "An earlier report.json of the same command (e.g. from an earlier build): report.json's \"speed_targets\" "
+                  "gives its figures as \"before\"")
+      ->check(CLI::ExistingFile);
   return [f] {
+    // Read before anything runs, so a bad baseline fails at once rather than after the run.
+    const std::optional<nlohmann::json> baseline =
+        f->baseline.empty() ? std::nullopt : std::optional<nlohmann::json>(parse_json_flag(read_text_file(f->baseline), "baseline"));
     formats::ImportReport imported;
     const Scene scene = f->scene.source.load(&imported);
     if (imported.features > 0) std::cout << "imported " << formats::footprint_import_summary(imported) << "\n";
@@ -442,7 +450,8 @@ Runner add_report(CLI::App& app) {
                       {"max_replays", options.max_replays},
                       {"subjects", f->subjects.identity()}};
     const AssembledReport assembled = assemble_report(parts);
-    const nlohmann::json document = f->shard.whole() ? assembled.document : shard_document(assembled.document, parts, f->shard);
+    nlohmann::json document = f->shard.whole() ? assembled.document : shard_document(assembled.document, parts, f->shard);
+    if (f->shard.whole() && baseline) document["speed_targets"] = speed_targets(document, &*baseline);
     write_text_file_atomically(f->output, document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!f->junit.empty()) write_text_file_atomically(f->junit, junit_xml({assembled.verdict}));
     if (!f->html.empty()) {
@@ -452,6 +461,8 @@ Runner add_report(CLI::App& app) {
     }
     if (document.contains("map_problem")) std::cerr << "cullcheck: " << document["map_problem"].get<std::string>() << "\n";
     std::cout << coordinates_line(coordinates, f->path.source_name("")) << "\n" << summary_table(v);
+    if (document.contains("speed_targets") && !document["speed_targets"]["rows"].empty())
+      std::cout << speed_targets_text(document["speed_targets"]);
     for (const ClaimCheck& c : assembled.claims) {
       std::cout << "claim " << c.id << ": " << (c.holds ? "holds" : "REFUTED") << " (" << c.frames_checked << " frames, "
                 << c.violations << " violations)\n";
