@@ -32,6 +32,8 @@ std::string polar_diagram_section(const nlohmann::json& report);
 std::string slice_wise_section(const nlohmann::json& report);
 std::string regions_section(const nlohmann::json& report);
 std::string vbaoi_table_section(const nlohmann::json& report);
+// report.json's "speed_targets" (reports/speed_targets.hpp): issue 17's targets, before and after.
+std::string speed_targets_section(const nlohmann::json& report);
 std::string fuzz_section(const nlohmann::json& report);
 std::string scene_section(const nlohmann::json& report);
 std::string map_section(const nlohmann::json& report, const PageMap& map);

@@ -1,4 +1,5 @@
 // The report page's tables and text sections (page_sections.hpp).
+#include <algorithm>
 #include <cmath>
 
 #include "reports/html/html_text.hpp"
@@ -370,6 +371,28 @@ std::string vbaoi_table_section(const json& report) {
       break;
     }
   return out + "</section>\n";
+}
+
+std::string speed_targets_section(const json& report) {
+  const json& rows = member(member(report, "speed_targets"), "rows");
+  if (!rows.is_array() || rows.empty()) return "";
+  const bool before = std::any_of(rows.begin(), rows.end(), [](const json& r) { return r.contains("before"); });
+  std::string out =
+      "<section id=\"speed-targets\"><h2>Speed targets</h2>\n<p class=\"note\">Issue 17's targets, each figure derived from "
+      "this report's own fields (the column on the right says which)" +
+      std::string(before ? "; before: the baseline report given to <code>report --baseline</code>" : "") + ".</p>\n<table>" +
+      (before ? header({"<target", "<goal", "before", "figure", "<met", "<from"}) : header({"<target", "<goal", "figure", "<met", "<from"}));
+  for (const json& r : rows) {
+    auto figure = [&](const char* key) {
+      if (!r.contains(key)) return cell("\u2013");
+      return r[key].is_null() ? cell("<span class=\"bad\">violations</span>") : cell(number(r[key].get<double>()));
+    };
+    const bool met = r.value("met", false);
+    out += "<tr>" + cell(escape(text_of(r, "id")), "name") + cell(escape(text_of(r, "goal")), "name") + (before ? figure("before") : "") +
+           figure("figure") + cell(met ? "yes" : "<span class=\"bad\">no</span>", "name") + cell(escape(text_of(r, "from")), "name") +
+           "</tr>\n";
+  }
+  return out + "</table>\n</section>\n";
 }
 
 std::string fuzz_section(const json& report) {

@@ -113,7 +113,7 @@ std::string report_page(const nlohmann::json& report, const PageMap& map) {
   page += ". Schema version " + escape(count(value_of(report, "schema_version"))) + ".</p>\n";
   page += "<nav><a href=\"#gate\">Gate</a><a href=\"#summary\">Methods</a><a href=\"#claims\">Claims</a><a href=\"#pareto\">Speed "
           "and accuracy</a><a href=\"#per-frame\">Per frame</a><a href=\"#tables\">Thesis tables</a><a href=\"#online-culling\">On-line culling</a><a href=\"#radar-echo\">Radar</a><a href=\"#polar-diagram\">Polar diagrams</a><a href=\"#slice-wise\">Slice-wise</a><a href=\"#regions\">Regions</a>"
-          "<a href=\"#vbaoi\">VbAoI</a><a href=\"#map\">Map</a><a href=\"#scene\">Scene</a></nav>\n";
+          "<a href=\"#vbaoi\">VbAoI</a><a href=\"#speed-targets\">Speed targets</a><a href=\"#map\">Map</a><a href=\"#scene\">Scene</a></nav>\n";
   page += guarded("Gate", [&] { return gate_section(report); });
   page += guarded("Methods", [&] { return summary_section(report); });
   page += guarded("Claims ledger", [&] { return claims_section(report); });
@@ -130,6 +130,7 @@ std::string report_page(const nlohmann::json& report, const PageMap& map) {
   page += guarded("Region radius sweep", [&] { return region_sweep_section(report); });
   page += guarded("VbAoI", [&] { return vbaoi_table_section(report) + vbaoi_plot_section(report); });
   page += guarded("Scaling", [&] { return scaling_section(report); });
+  page += guarded("Speed targets", [&] { return speed_targets_section(report); });
   page += guarded("Fuzzing", [&] { return fuzz_section(report); });
   page += guarded("Map", [&] { return map_section(report, map); });
   page += guarded("Scene", [&] { return scene_section(report); });

@@ -95,6 +95,30 @@ TEST(ReportPage, ShowsTheOnlineCullingTableWhenTheReportHasIt) {
   EXPECT_NE(page.find("at most 3,385 in one"), std::string::npos);
 }
 
+// report.json's speed_targets: one row per target, the baseline's column only when a row has
+// one, a missed goal and a violated precondition marked.
+TEST(ReportPage, ShowsTheSpeedTargetsWhenTheReportHasThem) {
+  json report = small_report(true);
+  report["speed_targets"] = {{"rows", json::array()}};
+  EXPECT_EQ(report_page(report, {}).find("id=\"speed-targets\""), std::string::npos);
+  report["speed_targets"]["rows"] = {{{"id", "oracle_vs_bare_packets"}, {"goal", ">= 0.9"}, {"figure", 0.70}, {"met", false},
+                                      {"from", "oracle: rays_per_second / bare_embree_packet_rays_per_second"}},
+                                     {{"id", "adjustable_increase_thesis"}, {"goal", "<= 0.15, 0 violations"}, {"figure", nullptr}, {"met", false},
+                                      {"from", "table_4_1 shrink_adjustable_thesis: violations"}}};
+  std::string page = report_page(report, {});
+  EXPECT_NE(page.find("<td class=\"name\">oracle_vs_bare_packets</td><td class=\"name\">&gt;= 0.9</td><td>0.700</td><td class=\"name\">"
+                      "<span class=\"bad\">no</span></td>"),
+            std::string::npos);
+  EXPECT_NE(page.find("<span class=\"bad\">violations</span>"), std::string::npos);
+  EXPECT_EQ(page.find("<th>before</th>"), std::string::npos);
+  report["speed_targets"]["rows"][0]["before"] = 0.46;
+  page = report_page(report, {});
+  EXPECT_NE(page.find("<th>before</th>"), std::string::npos);
+  EXPECT_NE(page.find("&gt;= 0.9</td><td>0.460</td><td>0.700</td>"), std::string::npos);
+  EXPECT_NE(page.find("<td class=\"name\">adjustable_increase_thesis</td><td class=\"name\">&lt;= 0.15, 0 violations</td><td>\u2013</td>"),
+            std::string::npos);  // no figure before for this row
+}
+
 // cullcheck report --radar-table's section: Table 3.3's rows with the thesis's time beside its
 // 60-degree row, the echo pictures, the moving platform.
 TEST(ReportPage, ShowsTheRadarEchoTableWhenTheReportHasIt) {
