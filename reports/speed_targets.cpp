@@ -82,6 +82,15 @@ const json* vbaoi_policy(const json& report, std::size_t& clients) {
   return nullptr;
 }
 
+// A field of the vbaoi policy in the run with the most clients.
+std::optional<Figure> vbaoi_figure(const json& report, const std::string& field) {
+  std::size_t clients = 0;
+  const json* p = vbaoi_policy(report, clients);
+  const auto x = p ? number_at(*p, {field}) : std::nullopt;
+  if (!x) return std::nullopt;
+  return Figure{*x, "vbaoi run of " + std::to_string(clients) + " clients, policy vbaoi: " + field};
+}
+
 std::vector<Target> targets() {
   std::vector<Target> out = {
       {"delta_h_guarded_median_speedup", ">= 10", [](double x) { return x >= 10.0; },
@@ -123,21 +132,9 @@ std::vector<Target> targets() {
                    return Figure{*s, "vbaoi.graph.build_seconds (" + std::to_string(std::size_t(n.value_or(0))) + " buildings)"};
                  }});
   out.push_back({"vbaoi_deliveries_vs_limit", "<= 2", [](double x) { return x <= 2.0; },
-                 [](const json& r) -> std::optional<Figure> {
-                   std::size_t clients = 0;
-                   const json* p = vbaoi_policy(r, clients);
-                   const auto x = p ? number_at(*p, {"deliveries_vs_limit"}) : std::nullopt;
-                   if (!x) return std::nullopt;
-                   return Figure{*x, "vbaoi run of " + std::to_string(clients) + " clients, policy vbaoi: deliveries_vs_limit"};
-                 }});
+                 [](const json& r) { return vbaoi_figure(r, "deliveries_vs_limit"); }});
   out.push_back({"vbaoi_missed_updates", "0", [](double x) { return x == 0.0; },
-                 [](const json& r) -> std::optional<Figure> {
-                   std::size_t clients = 0;
-                   const json* p = vbaoi_policy(r, clients);
-                   const auto x = p ? number_at(*p, {"missed_updates"}) : std::nullopt;
-                   if (!x) return std::nullopt;
-                   return Figure{*x, "vbaoi run of " + std::to_string(clients) + " clients, policy vbaoi: missed_updates"};
-                 }});
+                 [](const json& r) { return vbaoi_figure(r, "missed_updates"); }});
   return out;
 }
 
