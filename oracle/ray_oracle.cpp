@@ -24,10 +24,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-}  // namespace
-
-namespace {
-
 // One unit of the plan (an object, or a run of stratified cells), cast and sifted on one thread:
 // its witnessing rays in ray order, at most 1 + kFurtherWitnesses per object (the merge keeps no
 // more, so later ones cannot matter), and with `triangles` the first per triangle.

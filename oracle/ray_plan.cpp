@@ -87,9 +87,7 @@ ViewCone::BoxSettles ViewCone::settles(const Box3& box) const {
   // enough, and the margin covers the rounding of both sides.
   const Vec3 depth_n = planes[4].n;
   const double deepest = -least(depth_n * -1.0);
-  const double dx = std::max({box.lo.x - eye.x, 0.0, eye.x - box.hi.x}), dy = std::max({box.lo.y - eye.y, 0.0, eye.y - box.hi.y}),
-               dz = std::max({box.lo.z - eye.z, 0.0, eye.z - box.hi.z});
-  const double nearest = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const double nearest = distance_to_box(eye, box);
   out.before_far = out.sides && deepest > 0.0 && nearest > 0.0 &&
                    far_ * nearest / deepest * (1.0 - kMargin) > nearest * (1.0 + kBeyondRelative) + kBeyondAbsolute + kMargin * magnitude(depth_n);
   return out;
@@ -188,10 +186,8 @@ std::size_t RayPlan::object_rays(std::uint32_t index, std::vector<PlannedRay>& o
   const SurfaceSamples* kept = &samples;
   if (cache_)
     kept = &cache_->samples(index, samples);
-  else if (building)
-    surface_samples(scene_.buildings[index], mesh_.roofs[index], options_, samples);
   else
-    surface_samples(scene_.meshes[index - scene_.buildings.size()], options_, samples);
+    sample_object(scene_, mesh_, index, options_, samples);
   tally.capped += kept->capped ? 1 : 0;
   PlannedRay ray{};
   ray.aimed_at = index;

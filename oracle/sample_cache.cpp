@@ -23,17 +23,18 @@ SampleCache::AtDensity SampleCache::at(const SamplingOptions& o) {
   return AtDensity(*this, *t, o);
 }
 
-void SampleCache::sample(std::uint32_t index, const SamplingOptions& options, SurfaceSamples& out) const {
-  if (index < scene_.buildings.size())
-    surface_samples(scene_.buildings[index], mesh_.roofs[index], options, out);
+void sample_object(const Scene& scene, const TriangleMesh& mesh, std::uint32_t index, const SamplingOptions& options,
+                   SurfaceSamples& out) {
+  if (index < scene.buildings.size())
+    surface_samples(scene.buildings[index], mesh.roofs[index], options, out);
   else
-    surface_samples(scene_.meshes[index - scene_.buildings.size()], options, out);
+    surface_samples(scene.meshes[index - scene.buildings.size()], options, out);
 }
 
 const SurfaceSamples& SampleCache::AtDensity::samples(std::uint32_t index, SurfaceSamples& scratch) const {
   std::atomic<const SurfaceSamples*>& slot = table_.objects[index];
   if (const SurfaceSamples* kept = slot.load(std::memory_order_acquire)) return *kept;
-  cache_.sample(index, options_, scratch);
+  sample_object(cache_.scene_, cache_.mesh_, index, options_, scratch);
   std::atomic<std::size_t>& kept_points = cache_.points_kept_;
   const std::size_t n = scratch.points.size();
   // Reserve the points against the budget first, so that concurrent askers cannot overshoot it.

@@ -25,6 +25,11 @@
 
 namespace cullcheck::oracle {
 
+// Object `index`'s samples (mesh.hpp's order: buildings with the oracle's roof triangles, then
+// mesh objects) into `out`, computed afresh.
+void sample_object(const Scene& scene, const TriangleMesh& mesh, std::uint32_t index, const SamplingOptions& options,
+                   SurfaceSamples& out);
+
 class SampleCache {
  public:
   // 2^23 points (200 MB) by default: every building of the CLI's default city at the default
@@ -57,7 +62,6 @@ class SampleCache {
  private:
   // What the samples depend on: spacing, face grid, edge samples, inset, the per-object cap.
   using Density = std::tuple<double, int, int, double, std::size_t>;
-  void sample(std::uint32_t index, const SamplingOptions& options, SurfaceSamples& out) const;
 
   const Scene& scene_;
   const TriangleMesh& mesh_;

@@ -103,13 +103,15 @@ bool ViewTransform::contains(Vec3 p) const {
   return -c.w <= c.x && c.x <= c.w && -c.w <= c.y && c.y <= c.w && near_ <= c.z && c.z <= far_;
 }
 
+double distance_to_box(Vec3 eye, const Box3& box) {
+  const double dx = std::max({box.lo.x - eye.x, 0.0, eye.x - box.hi.x});
+  const double dy = std::max({box.lo.y - eye.y, 0.0, eye.y - box.hi.y});
+  const double dz = std::max({box.lo.z - eye.z, 0.0, eye.z - box.hi.z});
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 bool ViewTransform::may_meet(const Box3& box, bool depth) const {
-  if (omnidirectional_) {
-    const double dx = std::max({box.lo.x - eye_.x, 0.0, eye_.x - box.hi.x});
-    const double dy = std::max({box.lo.y - eye_.y, 0.0, eye_.y - box.hi.y});
-    const double dz = std::max({box.lo.z - eye_.z, 0.0, eye_.z - box.hi.z});
-    return std::sqrt(dx * dx + dy * dy + dz * dz) <= far_ * (1.0 + kRelativeSlack);
-  }
+  if (omnidirectional_) return distance_to_box(eye_, box) <= far_ * (1.0 + kRelativeSlack);
   for (int i = 0; i < (depth ? 6 : 4); ++i) {
     const ClipPlane& f = planes_[i];
     // A linear function's maximum over a box is at the corner its gradient points to.

@@ -45,6 +45,9 @@ struct ClipPlane {
   double d = 0.0;
 };
 
+// The distance from `eye` to the nearest point of `box` (0 inside it).
+double distance_to_box(Vec3 eye, const Box3& box);
+
 class ViewTransform {
  public:
   explicit ViewTransform(const Camera& camera);

@@ -148,15 +148,15 @@ struct RegionBounds {
   }
 };
 
-// Distance from the eye to a box: the plain sum of squares (bit-identical to the rest of the
-// engine), rescaled only when a square overflows, so that a box 1e200 m away is not "beyond
-// far" because its distance came out +inf.
 // How far the box lies beyond the eye along each axis (0 where the eye is within its extent).
 Vec3 box_offsets(const ViewVolume& volume, const Box3& box) {
   return {std::max({box.lo.x - volume.eye.x, 0.0, volume.eye.x - box.hi.x}),
           std::max({box.lo.y - volume.eye.y, 0.0, volume.eye.y - box.hi.y}),
           std::max({box.lo.z - volume.eye.z, 0.0, volume.eye.z - box.hi.z})};
 }
+// Distance from the eye to a box: the plain sum of squares (bit-identical to the rest of the
+// engine), rescaled only when a square overflows, so that a box 1e200 m away is not "beyond
+// far" because its distance came out +inf.
 double box_distance(const ViewVolume& volume, const Box3& box) {
   const auto [dx, dy, dz] = box_offsets(volume, box);
   const double d2 = dx * dx + dy * dy + dz * dz;
