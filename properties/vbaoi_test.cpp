@@ -490,6 +490,12 @@ RC_GTEST_PROP(VbaoiSimulation, ChannelGroupingHoldsUnderLatencyJitterAndLoss, ()
   RC_ASSERT(v.policy == "vbaoi");
   RC_ASSERT(v.grouping_violations == 0u);
   RC_ASSERT(v.missed_updates == 0u);
+  // The server's sight filter drops only updates no place the listener may stand can see.
+  const vbaoi::PolicyTraffic& filtered = r.policies[1];
+  RC_ASSERT(filtered.policy == "vbaoi_filtered");
+  RC_ASSERT(filtered.missed_updates == 0u);
+  RC_ASSERT(filtered.update_deliveries <= v.update_deliveries);
+  RC_TAG(filtered.update_deliveries < v.update_deliveries ? "filter dropped updates" : "filter dropped none");
   RC_ASSERT(r.render_violations == 0u);
   RC_ASSERT(r.outside_node == 0u);
   RC_ASSERT(r.clients_active > 0u);
@@ -535,18 +541,21 @@ TEST(VbaoiSimulation, BaselinesMissVisibleClientsThatVbaoiReaches) {
   EXPECT_EQ(r.clients_active, 60u);
   EXPECT_GT(r.visible_pairs, 100u);
   EXPECT_GT(r.handovers, 10u);
-  ASSERT_EQ(r.policies.size(), 3u + o.circular_radii.size());
+  ASSERT_EQ(r.policies.size(), 4u + o.circular_radii.size());
   EXPECT_EQ(r.policies[0].missed_updates, 0u);
-  EXPECT_EQ(r.policies[1].policy, "broadcast");
+  EXPECT_EQ(r.policies[1].policy, "vbaoi_filtered");
   EXPECT_EQ(r.policies[1].missed_updates, 0u);
-  EXPECT_GT(r.policies[1].messages, r.policies[0].messages);
-  EXPECT_EQ(r.policies[2].policy, "neighbours");
-  EXPECT_GT(r.policies[2].grouping_violations, 0u);  // thesis ch. 5.1's "listens to SNs", refuted
-  EXPECT_GT(r.policies[2].missed_updates, 0u);
-  EXPECT_EQ(r.policies[3].policy, "circular");
-  EXPECT_EQ(r.policies[3].radius, 50.0);
-  EXPECT_GT(r.policies[3].grouping_violations, 0u);  // visible down a street, farther than 50 m
+  EXPECT_EQ(r.policies[1].grouping_violations, 0u);
+  EXPECT_EQ(r.policies[2].policy, "broadcast");
+  EXPECT_EQ(r.policies[2].missed_updates, 0u);
+  EXPECT_GT(r.policies[2].messages, r.policies[0].messages);
+  EXPECT_EQ(r.policies[3].policy, "neighbours");
+  EXPECT_GT(r.policies[3].grouping_violations, 0u);  // thesis ch. 5.1's "listens to SNs", refuted
   EXPECT_GT(r.policies[3].missed_updates, 0u);
+  EXPECT_EQ(r.policies[4].policy, "circular");
+  EXPECT_EQ(r.policies[4].radius, 50.0);
+  EXPECT_GT(r.policies[4].grouping_violations, 0u);  // visible down a street, farther than 50 m
+  EXPECT_GT(r.policies[4].missed_updates, 0u);
   for (const vbaoi::PolicyTraffic& p : r.policies) {
     EXPECT_EQ(p.visible_updates, 2 * r.visible_pairs) << p.policy;
     EXPECT_EQ(p.lost_updates, 0u) << p.policy;
@@ -556,7 +565,12 @@ TEST(VbaoiSimulation, BaselinesMissVisibleClientsThatVbaoiReaches) {
   // clean network delivers at least every visible update at the checked ticks; broadcast, which
   // sends everything to everyone, more than VbAoI.
   EXPECT_GE(r.policies[0].checked_update_deliveries, r.policies[0].visible_updates);
-  EXPECT_GT(r.policies[1].checked_update_deliveries, r.policies[0].checked_update_deliveries);
+  EXPECT_GT(r.policies[2].checked_update_deliveries, r.policies[0].checked_update_deliveries);
+  // The sight filter (issue 17): at least the limit, far below VbAoI's channels alone, and it
+  // pays VbAoI's control traffic too, so its messages lie between the limit's and VbAoI's.
+  EXPECT_GE(r.policies[1].checked_update_deliveries, r.policies[1].visible_updates);
+  EXPECT_LT(2 * r.policies[1].checked_update_deliveries, r.policies[0].checked_update_deliveries);
+  EXPECT_LT(r.policies[1].messages, r.policies[0].messages);
   // Joining clients load their node's PVSo, not the city.
   for (std::uint64_t bytes : r.join_bytes) EXPECT_LT(bytes, r.whole_city_bytes + 64 * 1024);
 }
@@ -575,6 +589,8 @@ TEST(VbaoiSimulation, LossCostsResendsAndLostUpdatesNotMisses) {
   EXPECT_GT(r.policies[0].lost_updates, 0u);
   EXPECT_EQ(r.policies[0].missed_updates, 0u);
   EXPECT_EQ(r.policies[0].grouping_violations, 0u);
+  EXPECT_EQ(r.policies[1].missed_updates, 0u);  // the filter, on positions that lost updates left stale
+  EXPECT_GT(r.policies[1].lost_updates, 0u);
   EXPECT_EQ(r.render_violations, 0u);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
@@ -198,17 +199,29 @@ nlohmann::json vbaoi_report(const Scene& scene, const SceneSource& source, const
   return out;
 }
 
+namespace {
+
+// A run's policy by name (the order of SimulationResult::policies may grow); throws when absent.
+const nlohmann::json& policy_of(const nlohmann::json& run, const std::string& policy) {
+  for (const auto& p : run["policies"])
+    if (p["policy"] == policy) return p;
+  throw std::invalid_argument("vbaoi report: a run has no policy \"" + policy + "\"");
+}
+
+}  // namespace
+
 std::vector<ClaimCheck> vbaoi_claims(const nlohmann::json& report) {
   const auto& g = report["graph"];
-  auto make = [&](std::string id, std::string statement, std::size_t policy) {
+  auto make = [&](std::string id, std::string statement, const std::string& policy,
+                  std::string source = "Koldaş thesis ch. 5.1 (Fig. 5.2-5.3)") {
     ClaimCheck c;
     c.id = std::move(id);
-    c.source = "Koldaş thesis ch. 5.1 (Fig. 5.2-5.3)";
+    c.source = std::move(source);
     c.statement = std::move(statement);
-    c.method = "vbaoi (graph: " + g["method"].get<std::string>() + ", " + g["sampling"].get<std::string>() + " samples, eps " +
-               round_trip_text(g["epsilon"].get<double>()) + " m)";
+    c.method = policy + " (graph: " + g["method"].get<std::string>() + ", " + g["sampling"].get<std::string>() +
+               " samples, eps " + round_trip_text(g["epsilon"].get<double>()) + " m)";
     for (const auto& run : report["runs"]) {
-      const auto& p = run["policies"][policy];
+      const auto& p = policy_of(run, policy);
       c.frames_checked += run["checked_ticks"].get<std::uint64_t>();
       c.violations += p["grouping_violations"].get<std::uint64_t>() + p["missed_updates"].get<std::uint64_t>();
       c.search_seconds += run["wall_seconds"].get<double>();
@@ -230,19 +243,25 @@ std::vector<ClaimCheck> vbaoi_claims(const nlohmann::json& report) {
   return {make("thesis-5.1-vbaoi-channel-grouping",
                "Clients that publish on their node's channel and listen to the channels of its PVSn are mutually "
                "subscribed whenever they see each other, and receive each other's every update",
-               0),
+               "vbaoi"),
           make("thesis-5.1-listen-to-sns",
                "Listening to one's own node's channel and those of its SNs (ch. 5.1's wording) is enough to receive "
                "every client one can see",
-               2)};
+               "neighbours"),
+          make("vbaoi-server-sight-filter",
+               "A server that forwards a channel's update only to listeners its sight filter cannot prove blind to the "
+               "sender (engine/vbaoi/sight_filter.hpp) still delivers every update a listener can see",
+               "vbaoi_filtered", "cullcheck (issue 17)")};
 }
 
 std::size_t vbaoi_gate_violations(const nlohmann::json& report) {
   if (!report["graph"]["claims_conservative"].get<bool>()) return 0;
   std::size_t n = report["graph"]["invariant_violations"].get<std::size_t>();
   for (const auto& run : report["runs"]) {
-    const auto& v = run["policies"][0];
-    n += v["grouping_violations"].get<std::size_t>() + v["missed_updates"].get<std::size_t>();
+    for (const char* policy : {"vbaoi", "vbaoi_filtered"}) {
+      const auto& v = policy_of(run, policy);
+      n += v["grouping_violations"].get<std::size_t>() + v["missed_updates"].get<std::size_t>();
+    }
     n += run["vbaoi"]["render_violations"].get<std::size_t>() + run["vbaoi"]["outside_node"].get<std::size_t>();
   }
   return n;

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "core/random.hpp"
+#include "engine/vbaoi/sight_filter.hpp"
 
 // Why VbAoI routes every visible update (the channel-grouping argument the properties check):
 // let client x see client y at tick t, x in node A, y in node B. The graph puts B in PVSn(A)
@@ -31,7 +32,7 @@ using Micros = std::int64_t;
 Micros micros(double seconds) { return static_cast<Micros>(std::llround(seconds * 1e6)); }
 
 // Order of SimulationResult::policies.
-constexpr std::size_t kVbaoi = 0, kBroadcast = 1, kNeighbours = 2, kFirstCircular = 3;
+constexpr std::size_t kVbaoi = 0, kFiltered = 1, kBroadcast = 2, kNeighbours = 3, kFirstCircular = 4;
 constexpr std::size_t kExamples = 3;  // grouping violations kept per policy
 constexpr std::uint64_t kWalkStream = 0x57414C4B;     // "WALK"
 constexpr std::uint64_t kNetworkStream = 0x4E455457;  // "NETW"
@@ -120,7 +121,7 @@ struct Client {
 class Simulation {
  public:
   Simulation(const Scene& scene, const NavigationGraph& graph, const SimulationOptions& o, const LineOfSight& los)
-      : scene_(scene), graph_(graph), o_(o), los_(los) {
+      : scene_(scene), graph_(graph), o_(o), los_(los), sight_(scene, graph.options.eye_height) {
     tick_ = micros(o.tick);
     bound_ = micros(o.latency + o.jitter);
     ticks_ = static_cast<std::uint64_t>(std::floor(o.duration / o.tick)) + 1;
@@ -133,6 +134,7 @@ class Simulation {
       r_.policies.push_back(p);
     };
     policy("vbaoi", 0.0);
+    policy("vbaoi_filtered", 0.0);
     policy("broadcast", 0.0);
     policy("neighbours", 0.0);
     for (double radius : o.circular_radii) policy("circular", radius);
@@ -150,6 +152,8 @@ class Simulation {
     server_node_.assign(o.clients, 0);
     clients_in_.assign(graph.nodes.size(), 0);
     last_pos_.resize(o.clients);
+    update_pos_.resize(o.clients);
+    update_tick_.assign(o.clients, kNoTick);
     cell_of_.assign(o.clients, std::nullopt);
     grid_size_ = 1.0;
     for (double radius : o.circular_radii) grid_size_ = std::max(grid_size_, radius);
@@ -225,6 +229,7 @@ class Simulation {
     r_.messages_by_kind[kind] += 1;
     r_.bytes_by_kind[kind] += m.bytes;
     count(kVbaoi, 1, m.bytes, tick_index(now_));
+    count(kFiltered, 1, m.bytes, tick_index(now_));
     const std::uint64_t id = message_id_++;
     if (hashed_uniform(o_.seed ^ kNetworkStream, id, 1, 0) < o_.loss) return false;
     const double delay = o_.latency + o_.jitter * hashed_uniform(o_.seed ^ kNetworkStream, id, 2, 0);
@@ -506,7 +511,10 @@ class Simulation {
         ++p.grouping_violations;
         if (p.first_violations.size() < kExamples) p.first_violations.push_back({k, a, b, ca.pos, cb.pos, ca.node, cb.node});
       };
-      if (!contains(subs_[a], cb.node) || !contains(subs_[b], ca.node)) violation(kVbaoi);
+      if (!contains(subs_[a], cb.node) || !contains(subs_[b], ca.node)) {
+        violation(kVbaoi);
+        violation(kFiltered);  // the same channels
+      }
       if (!adjacent_or_same(ca.node, cb.node)) violation(kNeighbours);
       const double d = length(ca.pos - cb.pos);
       for (std::size_t p = kFirstCircular; p < r_.policies.size(); ++p)
@@ -574,6 +582,7 @@ class Simulation {
         r_.messages_by_kind[static_cast<std::size_t>(m.kind)] += listeners;
         r_.bytes_by_kind[static_cast<std::size_t>(m.kind)] += listeners * m.bytes;
         count(kVbaoi, listeners, listeners * m.bytes, tick_index(now_));
+        count(kFiltered, listeners, listeners * m.bytes, tick_index(now_));
         if (m.kind == MessageKind::welcome) {
           move_known_position(m.client, m.position);
           place(m.client, m.channel);
@@ -600,6 +609,12 @@ class Simulation {
     r_.messages_by_kind[static_cast<std::size_t>(MessageKind::update)] += vbaoi;
     r_.bytes_by_kind[static_cast<std::size_t>(MessageKind::update)] += vbaoi * m.bytes;
     deliver(kVbaoi, vbaoi);
+    // VbAoI filtered: those of the listeners that the sight filter cannot prove blind to y.
+    passed_.clear();
+    for (std::uint32_t x : listeners)
+      if (x != y && may_see(x, m.position, k)) passed_.push_back(x);
+    count(kFiltered, passed_.size(), passed_.size() * m.bytes, k);
+    deliver(kFiltered, passed_.size());
     // Broadcast: every other client the server knows.
     const std::size_t everyone = known_count_ - (known_[y] ? 1 : 0);
     count(kBroadcast, everyone, everyone * m.bytes, k);
@@ -625,6 +640,7 @@ class Simulation {
           else if (lost) ++p.lost_updates;
         };
         tally(r_.policies[kVbaoi], contains(listeners, x));
+        tally(r_.policies[kFiltered], contains(passed_, x));
         tally(r_.policies[kBroadcast], known_[x] != 0);
         tally(r_.policies[kNeighbours], known_[x] != 0 && adjacent_or_same(server_node_[x], m.channel));
         for (std::size_t p = kFirstCircular; p < r_.policies.size(); ++p)
@@ -633,6 +649,20 @@ class Simulation {
       expected_.erase(it);
     }
     move_known_position(y, m.position);
+    if (update_tick_[y] == kNoTick || k > update_tick_[y]) {
+      update_tick_[y] = k;
+      update_pos_[y] = m.position;
+    }
+  }
+
+  // Whether listener x may see an eye at `from` at tick k, for all the server knows: x stands
+  // within speed_max x tick x |k - k_x| of the position its latest update (of tick k_x) gave; a
+  // listener that has sent no update yet is not filtered.
+  bool may_see(std::uint32_t x, Vec2 from, std::uint64_t k) {
+    if (update_tick_[x] == kNoTick) return true;
+    const double ticks = static_cast<double>(k > update_tick_[x] ? k - update_tick_[x] : update_tick_[x] - k);
+    const double walked = o_.speed_max * o_.tick * ticks * (1.0 + 1e-9) + 1e-9;
+    return !sight_.hidden(from, update_pos_[x], walked);
   }
 
   // The server learns of a client from its join request; from then on every policy counts it.
@@ -689,6 +719,7 @@ class Simulation {
   const NavigationGraph& graph_;
   const SimulationOptions& o_;
   const LineOfSight& los_;
+  SightFilter sight_;
   SimulationResult r_;
   Micros tick_ = 0, bound_ = 0, now_ = 0;
   std::uint64_t ticks_ = 0, seq_ = 0, message_id_ = 0, next_request_ = 1, digest_ = 0;
@@ -704,6 +735,11 @@ class Simulation {
   std::vector<std::size_t> clients_in_;  // per node: clients the server places there
   std::size_t known_count_ = 0;
   std::vector<Vec2> last_pos_;
+  // The sight filter's view of each client: the position and tick of its latest update.
+  static constexpr std::uint64_t kNoTick = ~std::uint64_t{0};
+  std::vector<Vec2> update_pos_;
+  std::vector<std::uint64_t> update_tick_;
+  std::vector<std::uint32_t> passed_;  // the update being routed: listeners the filter passed
   std::vector<std::optional<std::uint64_t>> cell_of_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
   double grid_size_ = 1.0;

@@ -208,7 +208,8 @@ std::string vbaoi_plot_section(const json& report) {
   messages.x_label = "clients";
   messages.y_label = "messages in the simulation";
   messages.log_x = messages.log_y = true;
-  messages.note = "Each policy delivers the same updates; fewer messages is better. Broadcast grows with the square of the clients.";
+  messages.note = "Every client publishes the same updates; fewer messages is better where a policy misses none (see the "
+                  "table). Broadcast grows with the square of the clients; VbAoI filtered drops what the server proves unseen.";
   bytes = messages;
   bytes.id = "plot-vbaoi-bytes";
   bytes.title = "VbAoI: bytes against clients";

@@ -34,7 +34,8 @@ json a_report() {
                         {{"clients", 1000},
                          {"policies",
                           {{{"policy", "broadcast"}, {"deliveries_vs_limit", 57.5}, {"missed_updates", 0}},
-                           {{"policy", "vbaoi"}, {"deliveries_vs_limit", 5.0}, {"missed_updates", 2}}}}}};
+                           {{"policy", "vbaoi"}, {"deliveries_vs_limit", 5.0}, {"missed_updates", 2}},
+                           {{"policy", "vbaoi_filtered"}, {"deliveries_vs_limit", 1.25}, {"missed_updates", 0}}}}}};
   return r;
 }
 
@@ -48,7 +49,7 @@ const json& row(const json& targets, const std::string& id) {
 
 TEST(SpeedTargets, EachRowReadsItsFieldsAndSaysWhetherItsGoalIsMet) {
   const json t = speed_targets(a_report());
-  ASSERT_EQ(t["rows"].size(), 9u);  // no row for shrink_adjustable_conservative: the table has none
+  ASSERT_EQ(t["rows"].size(), 11u);  // no row for shrink_adjustable_conservative: the table has none
   EXPECT_DOUBLE_EQ(row(t, "delta_h_guarded_median_speedup")["figure"].get<double>(), 4.0);  // 0.8 / 0.2
   EXPECT_FALSE(row(t, "delta_h_guarded_median_speedup")["met"].get<bool>());
   EXPECT_DOUBLE_EQ(row(t, "delta_h_guarded_p95_speedup")["figure"].get<double>(), 2.0);  // 1.6 / 0.8
@@ -68,6 +69,12 @@ TEST(SpeedTargets, EachRowReadsItsFieldsAndSaysWhetherItsGoalIsMet) {
   EXPECT_DOUBLE_EQ(row(t, "vbaoi_deliveries_vs_limit")["figure"].get<double>(), 5.0);
   EXPECT_EQ(row(t, "vbaoi_missed_updates")["figure"].get<double>(), 2.0);
   EXPECT_FALSE(row(t, "vbaoi_missed_updates")["met"].get<bool>());
+  // The same two figures of the policy with the server's sight filter.
+  EXPECT_DOUBLE_EQ(row(t, "vbaoi_filtered_deliveries_vs_limit")["figure"].get<double>(), 1.25);
+  EXPECT_TRUE(row(t, "vbaoi_filtered_deliveries_vs_limit")["met"].get<bool>());
+  EXPECT_EQ(row(t, "vbaoi_filtered_missed_updates")["from"].get<std::string>(),
+            "vbaoi run of 1000 clients, policy vbaoi_filtered: missed_updates");
+  EXPECT_TRUE(row(t, "vbaoi_filtered_missed_updates")["met"].get<bool>());
   EXPECT_FALSE(t["rows"][0].contains("before"));
 }
 
