@@ -58,6 +58,10 @@ add_test(NAME shard_cli_test COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/tests/shard_
   $<TARGET_FILE:report_same> ${PROJECT_BINARY_DIR}/examples/subjects)
 
 # Issue 17's speed targets read off hand-made reports (report.json's "speed_targets").
+add_executable(table_4_1_test ${CMAKE_CURRENT_LIST_DIR}/tests/table_4_1_test.cpp)
+target_link_libraries(table_4_1_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
+add_test(NAME table_4_1_test COMMAND table_4_1_test)
+
 add_executable(speed_targets_test ${CMAKE_CURRENT_LIST_DIR}/tests/speed_targets_test.cpp)
 target_link_libraries(speed_targets_test PRIVATE cullcheck_reports GTest::gtest_main cullcheck_warnings)
 add_test(NAME speed_targets_test COMMAND speed_targets_test)

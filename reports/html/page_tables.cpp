@@ -172,7 +172,13 @@ std::string table_4_1_section(const json& report) {
     out += "<p class=\"note\">At " + number(value_of(d, "viewing_angle")) + " degrees the oracle's witnessed union over each disc is " +
            percent(value_of(d, "witnessed_increase")) + " above what its centre sees (" + number(value_of(d, "witnessed_union_mean"), 4) +
            " against " + number(value_of(d, "witnessed_centre_mean"), 4) + " objects): no conservative region method can do "
-           "better than that on this walk.</p>\n";
+           "better than that on this walk." +
+           (d.contains("oh_os_union_increase")
+                ? " OH(OS)'s own point PVS over " + number(value_of(d, "oh_os_union_eyes")) + " eyes of the disc adds up to " +
+                      percent(value_of(d, "oh_os_union_increase")) +
+                      " over the point PVS: the floor of a region method that keeps OH(OS)'s PVS at every eye."
+                : std::string()) +
+           "</p>\n";
   return out + "</section>\n";
 }
 
