@@ -295,10 +295,10 @@ std::string vbaoi_table(const nlohmann::json& r) {
                 g["pvs_n_symmetry"].get<std::string>().c_str(),
                 static_cast<unsigned long long>(g["pvs_n_added_neighbours"].get<std::uint64_t>()));
   out << line;
-  out << "clients  policy        radius   msgs/tick  KB/tick  vs_vbaoi  visible_upd  vs_limit   missed    lost  grouping_viol\n";
+  out << "clients  policy          radius   msgs/tick  KB/tick  vs_vbaoi  visible_upd  vs_limit   missed    lost  grouping_viol\n";
   for (const auto& run : r["runs"]) {
     for (const auto& p : run["policies"]) {
-      std::snprintf(line, sizeof line, "%7u  %-12s %7.0f %11.1f %8.1f %9.1f %12llu %9.2f %8llu %7llu %14llu\n",
+      std::snprintf(line, sizeof line, "%7u  %-14s %7.0f %11.1f %8.1f %9.1f %12llu %9.2f %8llu %7llu %14llu\n",
                     run["clients"].get<unsigned>(), p["policy"].get<std::string>().c_str(), p["radius"].get<double>(),
                     p["messages_per_tick"]["mean"].get<double>(), p["bytes_per_tick"]["mean"].get<double>() / 1024.0,
                     p["messages_vs_vbaoi"].get<double>(),
