@@ -123,49 +123,57 @@ nlohmann::json table_4_1(const Table41Options& options, const MethodOptions& met
       const double a = kTwoPi * k / (6.0 * ring), r = options.radius * ring / kUnionRings;
       union_offsets.push_back({r * std::cos(a), r * std::sin(a)});
     }
+  // The oracle's 13 eyes: the centre, 8 on the rim and 4 at half the radius.
+  std::vector<Vec2> witness_offsets;
+  for (int k = 0; k < 13; ++k) {
+    const double reach = k == 0 ? 0.0 : k <= 8 ? options.radius : options.radius / 2;
+    const double a = k <= 8 ? (k - 1) * kPi / 4 : (k - 9) * kPi / 2 + kPi / 4;
+    witness_offsets.push_back({reach * std::cos(a), reach * std::sin(a)});
+  }
   for (const int angle : {60, 90}) {
     std::vector<double> unions, points, centres, oh_os_unions;
     std::vector<std::array<double, 5>> unwitnessed(engines.size() + 1, std::array<double, 5>{});  // 4 bins + total
+    const std::vector<double> turns = angle == 60 ? std::vector<double>{0.0} : std::vector<double>{-1.0, 0.0, 1.0};
+    // Every camera of the disc around c at `offsets` (those not inside a building), turned by each
+    // of `turns`; `centre` is true for the first offset unturned.
+    auto each_eye = [&](const Camera& c, const std::vector<Vec2>& offsets, auto&& f) {
+      for (std::size_t k = 0; k < offsets.size(); ++k) {
+        Camera v = c;
+        v.position = {c.position.x + offsets[k].x, c.position.y + offsets[k].y, c.position.z};
+        if (open.inside_building(v.position)) continue;
+        for (const double turn : turns) {
+          v.yaw = std::fmod(c.yaw + turn * options.widen_deg * kPi / 180.0 + kTwoPi, kTwoPi);
+          f(v, k == 0 && turn == 0.0);
+        }
+      }
+    };
+    auto distinct = [](std::vector<ObjectId>& ids) {
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      return static_cast<double>(ids.size());
+    };
     for (std::size_t f = 0; f < at_60.frames.size(); f += stride) {
       const Camera& c = at_60.frames[f];
       std::vector<ObjectId> seen;
-      for (int k = 0; k < 13; ++k) {
-        const double reach = k == 0 ? 0.0 : k <= 8 ? options.radius : options.radius / 2;
-        const double a = k <= 8 ? (k - 1) * kPi / 4 : (k - 9) * kPi / 2 + kPi / 4;
-        Camera v = c;
-        v.position = {c.position.x + reach * std::cos(a), c.position.y + reach * std::sin(a), c.position.z};
-        if (open.inside_building(v.position)) continue;
-        for (const double turn : angle == 60 ? std::vector<double>{0.0} : std::vector<double>{-1.0, 0.0, 1.0}) {
-          v.yaw = std::fmod(c.yaw + turn * options.widen_deg * kPi / 180.0 + kTwoPi, kTwoPi);
-          const oracle::OracleAnswer answer = truth.visible_set(v, options.oracle);
-          if (k == 0 && turn == 0.0) {
-            centres.push_back(static_cast<double>(answer.visible.size()));
-            if (angle == 60)
-              for (ObjectId id : missing_from(point_engine->cull(c).pvs, answer.visible)) {
-                unwitnessed.back()[bin_of(id, plan(c.position))] += 1;
-                unwitnessed.back()[4] += 1;
-              }
-          }
-          seen.insert(seen.end(), answer.visible.begin(), answer.visible.end());
+      each_eye(c, witness_offsets, [&](const Camera& v, bool centre) {
+        const oracle::OracleAnswer answer = truth.visible_set(v, options.oracle);
+        if (centre) {
+          centres.push_back(static_cast<double>(answer.visible.size()));
+          if (angle == 60)
+            for (ObjectId id : missing_from(point_engine->cull(c).pvs, answer.visible)) {
+              unwitnessed.back()[bin_of(id, plan(c.position))] += 1;
+              unwitnessed.back()[4] += 1;
+            }
         }
-      }
-      std::sort(seen.begin(), seen.end());
-      seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-      unions.push_back(static_cast<double>(seen.size()));
+        seen.insert(seen.end(), answer.visible.begin(), answer.visible.end());
+      });
+      unions.push_back(distinct(seen));
       std::vector<ObjectId> kept;
-      for (const Vec2 offset : union_offsets) {
-        Camera v = c;
-        v.position = {c.position.x + offset.x, c.position.y + offset.y, c.position.z};
-        if (open.inside_building(v.position)) continue;
-        for (const double turn : angle == 60 ? std::vector<double>{0.0} : std::vector<double>{-1.0, 0.0, 1.0}) {
-          v.yaw = std::fmod(c.yaw + turn * options.widen_deg * kPi / 180.0 + kTwoPi, kTwoPi);
-          const std::vector<ObjectId> pvs = point_engine->cull(v).pvs;
-          kept.insert(kept.end(), pvs.begin(), pvs.end());
-        }
-      }
-      std::sort(kept.begin(), kept.end());
-      kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
-      oh_os_unions.push_back(static_cast<double>(kept.size()));
+      each_eye(c, union_offsets, [&](const Camera& v, bool) {
+        const std::vector<ObjectId> pvs = point_engine->cull(v).pvs;
+        kept.insert(kept.end(), pvs.begin(), pvs.end());
+      });
+      oh_os_unions.push_back(distinct(kept));
       const double turn = angle == 60 ? 0.0 : options.widen_deg * kPi / 180.0;
       for (std::size_t m = 0; m < engines.size(); ++m)
         for (ObjectId id : missing_from(engines[m]->cull_region({c, options.radius, turn}).pvs, seen)) {

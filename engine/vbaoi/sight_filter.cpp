@@ -20,12 +20,6 @@ double wall_margin(const std::vector<Vec2>& ring) {
   return 0.01 + 1e-6 * extent;
 }
 
-double signed_area2(const std::vector<Vec2>& ring) {
-  double area = 0.0;
-  for (std::size_t i = 0, n = ring.size(); i < n; ++i) area += cross(ring[i], ring[(i + 1) % n]);
-  return area;
-}
-
 }  // namespace
 
 SightFilter::SightFilter(const Scene& scene, double eye_height, double cell) : cell_(cell) {
@@ -36,7 +30,7 @@ SightFilter::SightFilter(const Scene& scene, double eye_height, double cell) : c
     for (const ConvexVerticalPrism& prism : b.prisms) {
       if (!(prism.height > eye_height + margin) || prism.ring.size() < 3) continue;  // the eyes see over it
       Blocker blocker{prism.ring};
-      const double area = signed_area2(blocker.ring);
+      const double area = signed_area(blocker.ring);
       if (!(std::abs(area) > 0.0) || !std::isfinite(area)) continue;
       if (area < 0.0) std::reverse(blocker.ring.begin(), blocker.ring.end());
       auto inner = shrink_convex_ring(blocker.ring, wall_margin(blocker.ring));

@@ -222,14 +222,19 @@ class Simulation {
     p.messages_per_tick[tick] += messages;
     p.bytes_per_tick[tick] += bytes;
   }
+  // VbAoI's channel traffic (control messages, uplinks, welcome and leave), which VbAoI filtered
+  // shares: only their pose deliveries differ.
+  void count_channels(std::size_t messages, std::size_t bytes, std::size_t tick) {
+    count(kVbaoi, messages, bytes, tick);
+    count(kFiltered, messages, bytes, tick);
+  }
   // Sends one control or update message over a client's link (up: to the server; down: to the
   // client). VbAoI's traffic; baselines count their own. Returns false when the network lost it.
   bool send(Message m, bool up) {
     const std::size_t kind = static_cast<std::size_t>(m.kind);
     r_.messages_by_kind[kind] += 1;
     r_.bytes_by_kind[kind] += m.bytes;
-    count(kVbaoi, 1, m.bytes, tick_index(now_));
-    count(kFiltered, 1, m.bytes, tick_index(now_));
+    count_channels(1, m.bytes, tick_index(now_));
     const std::uint64_t id = message_id_++;
     if (hashed_uniform(o_.seed ^ kNetworkStream, id, 1, 0) < o_.loss) return false;
     const double delay = o_.latency + o_.jitter * hashed_uniform(o_.seed ^ kNetworkStream, id, 2, 0);
@@ -581,8 +586,7 @@ class Simulation {
         const std::size_t listeners = members_[m.channel].size() - (contains(members_[m.channel], m.client) ? 1 : 0);
         r_.messages_by_kind[static_cast<std::size_t>(m.kind)] += listeners;
         r_.bytes_by_kind[static_cast<std::size_t>(m.kind)] += listeners * m.bytes;
-        count(kVbaoi, listeners, listeners * m.bytes, tick_index(now_));
-        count(kFiltered, listeners, listeners * m.bytes, tick_index(now_));
+        count_channels(listeners, listeners * m.bytes, tick_index(now_));
         if (m.kind == MessageKind::welcome) {
           move_known_position(m.client, m.position);
           place(m.client, m.channel);
