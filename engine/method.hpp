@@ -20,6 +20,8 @@
 
 namespace cullcheck {
 
+class Quadtree;
+
 struct CullStatistics {
   std::uint64_t cells_tested = 0;       // quadtree cells tested against frustum / horizon
   std::uint64_t buildings_tested = 0;   // buildings tested individually
@@ -28,6 +30,10 @@ struct CullStatistics {
   std::uint64_t items_skipped = 0;      // cells and buildings skipped untested (ΔH: known hidden)
   std::uint64_t guard_fires = 0;        // ΔH: 1 when this frame fell back to a full recompute
   std::uint64_t bound_tests = 0;        // frustum methods in camera space: point, sphere and box tests made
+  // Filled by reports, not by the method, for methods that sweep a quadtree
+  // (CullingMethod::swept_quadtree): the tests an exact top-down traversal of that quadtree needs
+  // for this PVS (engine/spatial/traversal_bound.hpp); 0 for every other method.
+  std::uint64_t exact_traversal_tests = 0;
   double cull_ms = 0.0;                 // wall time of this query (an outside subject's own figure when it sends one)
   double protocol_ms = 0.0;             // outside subjects: time in the protocol (serialising, pipes, parsing)
 };
@@ -74,6 +80,11 @@ class CullingMethod {
   // says so (reports count it) rather than asking.
   virtual std::string unsupported_camera(const Camera& camera) const;
   virtual CullResult cull(const Camera& camera) = 0;
+  // The quadtree a method sweeps front to back, testing every non-empty child of each cell it
+  // enters and every building of each leaf it enters (OH(OS)); null for every other method.
+  // Reports hold its cells_tested + buildings_tested against the tests an exact traversal of the
+  // same quadtree needs for the same PVS.
+  virtual const Quadtree* swept_quadtree() const { return nullptr; }
 };
 
 struct MethodOptions {

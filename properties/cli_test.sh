@@ -81,8 +81,8 @@ grep -q '"region_sweep"' "$work/sweep.json" && pass || fail "report: no region_s
 # refused before the run, and nothing is written.
 expect_exit 0 "report with a baseline" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
   --method oh_os_conservative --claim-scenes 0 --baseline "$work/sweep.json" -o "$work/against.json"
-[ "$(json_field "$work/against.json" "[r['id'] for r in d['speed_targets']['rows'] if 'before' in r]")" = "['oracle_vs_bare_packets']" ] &&
-  pass || fail "report --baseline: the oracle row has no figure before"
+[ "$(json_field "$work/against.json" "[r['id'] for r in d['speed_targets']['rows'] if 'before' in r]")" = "['oh_os_tests_over_exact_traversal', 'oracle_vs_bare_packets']" ] &&
+  pass || fail "report --baseline: the OH(OS) and oracle rows have no figure before"
 grep -q "oracle_vs_bare_packets" "$work/out" && pass || fail "report --baseline: no speed-targets table printed"
 printf 'not json' >"$work/not-a-report.json"
 expect_exit 2 "report: baseline not JSON" "$cc" report --scene "$work/a.json" --path "$work/path.json" \
@@ -375,7 +375,7 @@ grep -q "^coordinates: scene-local metres, world = local + origin \[5000001.0, 3
   "[5000001.0, 3000000.0] world True 8 5.0" ] && pass || fail "gate: report.json of the world walk (origin, frame, subject = frustum, something seen)"
 expect_exit 0 "gate: the same walk scene-local" "$cc" gate "${far[@]}" --path "$work/far-local.json" --method frustum,oh_os_conservative \
   --subject "$subjects/minimal_subject" -o "$work/fl.json"
-strip_run() { json_field "$1" "[{k: ({f: x for f, x in v.items() if 'ms' not in f} if k == 'per_frame' else v) for k, v in r.items() if 'ms' not in k and 'seconds' not in k and k != 'protocol'} for r in d['runs']], d['oracle']['rays_cast']"; }
+strip_run() { json_field "$1" "[{k: ({f: x for f, x in v.items() if 'ms' not in f} if k == 'per_frame' else v) for k, v in r.items() if 'ms' not in k and 'seconds' not in k and 'ns_per' not in k and k != 'protocol'} for r in d['runs']], d['oracle']['rays_cast']"; }
 [ "$(strip_run "$work/fw.json")" = "$(strip_run "$work/fl.json")" ] && pass || fail "gate: the world walk and the local walk gave different runs"
 # Per frame, the same PVS whichever way the frame is said.
 "$cc" cull "${far[@]}" --path "$work/far-local.json" --method oh_os_conservative | sed 's/"cull_ms":[0-9.e-]*//' >"$work/cl.txt"

@@ -10,6 +10,7 @@
 #include "reports/gate_verdict.hpp"
 #include "reports/html/frame_map.hpp"
 #include "reports/statistics.hpp"
+#include "reports/test_costs.hpp"
 
 #ifndef CULLCHECK_BUILD_TYPE
 #define CULLCHECK_BUILD_TYPE "unknown"
@@ -181,6 +182,8 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
                     {"bound_tests_per_object", ratio(static_cast<double>(r.totals.bound_tests),
                                                      static_cast<double>(r.totals.cells_tested + r.totals.buildings_tested))},
                     {"guard_fire_rate", ratio(static_cast<double>(r.totals.guard_fires), frames)},
+                    {"tests_over_exact_traversal", tests_over_exact_traversal(r.totals)},
+                    {"ns_per_test", ns_per_test(r.totals, mean(r.cull_ms) * frames)},
                     {"frames_pvs_differs_from_oh_os",
                      r.compared_with_reference ? nlohmann::json(r.frames_differing_from_reference) : nlohmann::json(nullptr)},
                     {"violations", r.violation_count},
@@ -317,7 +320,7 @@ nlohmann::json without_timings(const nlohmann::json& j) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [key, value] : j.items()) {
     const bool timed = key.find("_ms") != std::string::npos || key.rfind("ms_", 0) == 0 || key.find("seconds") != std::string::npos ||
-                       key.find("per_second") != std::string::npos || key.find("speedup") != std::string::npos || key == "machine" ||
+                       key.find("per_second") != std::string::npos || key.find("ns_per_") != std::string::npos || key.find("speedup") != std::string::npos || key == "machine" ||
                        key == "threads" || key.find("peak_rss") != std::string::npos ||
                        key == "speed_targets";  // derived from timings (and from fields kept here)
     if (!timed) out[key] = without_timings(value);

@@ -5,9 +5,11 @@
 #include <cstdio>
 
 #include "engine/method.hpp"
+#include "engine/spatial/traversal_bound.hpp"
 #include "generators/camera_paths.hpp"
 #include "generators/city.hpp"
 #include "reports/statistics.hpp"
+#include "reports/test_costs.hpp"
 
 namespace cullcheck {
 namespace {
@@ -31,7 +33,8 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
     for (const std::string& name : options.methods) methods.push_back(make_method(name, scene));
     struct Tally {
       std::vector<double> ms, pvs;
-      double cells = 0, nodes = 0;
+      double nodes = 0;
+      CullStatistics totals;  // cells, buildings and exact-traversal tests
       std::size_t differs = 0;
     };
     std::vector<Tally> tally(methods.size());
@@ -44,8 +47,11 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
         results[m] = methods[m]->cull(camera);
         tally[m].ms.push_back(results[m].stats.cull_ms);
         tally[m].pvs.push_back(static_cast<double>(results[m].pvs.size()));
-        tally[m].cells += static_cast<double>(results[m].stats.cells_tested);
         tally[m].nodes += static_cast<double>(results[m].stats.horizon_nodes);
+        tally[m].totals.cells_tested += results[m].stats.cells_tested;
+        tally[m].totals.buildings_tested += results[m].stats.buildings_tested;
+        if (const Quadtree* q = methods[m]->swept_quadtree())  // after the query's own timing
+          tally[m].totals.exact_traversal_tests += top_down_test_bound(*q, scene, results[m].pvs).total();
       }
       if (reference < methods.size())
         for (std::size_t m = 0; m < methods.size(); ++m) tally[m].differs += results[m].pvs != results[reference].pvs;
@@ -58,8 +64,11 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
                           {"cull_ms_median", median(t.ms)},
                           {"cull_ms_p95", percentile(t.ms, 95)},
                           {"pvs_mean", mean(t.pvs)},
-                          {"cells_tested_mean", t.cells / frames},
-                          {"horizon_nodes_mean", t.nodes / frames}};
+                          {"cells_tested_mean", static_cast<double>(t.totals.cells_tested) / frames},
+                          {"buildings_tested_mean", static_cast<double>(t.totals.buildings_tested) / frames},
+                          {"horizon_nodes_mean", t.nodes / frames},
+                          {"tests_over_exact_traversal", tests_over_exact_traversal(t.totals)},
+                          {"ns_per_test", ns_per_test(t.totals, mean(t.ms) * frames)}};
       if (reference < methods.size()) {
         r["frames_pvs_differs_from_oh_os"] = t.differs;
         const double own = median(t.ms);
@@ -82,15 +91,19 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
 std::string scaling_table(const nlohmann::json& rows) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%9s %-20s %9s %9s %9s %9s %12s %9s\n", "buildings", "method", "ms_med", "ms_p95",
-                "pvs_mean", "cells", "oh_os/method", "pvs!=oh_os");
+  std::snprintf(line, sizeof line, "%9s %-20s %9s %9s %9s %9s %12s %9s %11s %7s\n", "buildings", "method", "ms_med", "ms_p95",
+                "pvs_mean", "cells", "oh_os/method", "pvs!=oh_os", "tests/exact", "ns/test");
   out += line;
   for (const auto& row : rows)
     for (const auto& m : row["methods"]) {
-      std::snprintf(line, sizeof line, "%9zu %-20s %9.3f %9.3f %9.1f %9.1f %12.2f %9zu\n", row["buildings"].get<std::size_t>(),
+      const nlohmann::json& exact = m.value("tests_over_exact_traversal", nlohmann::json(nullptr));
+      char over[32] = "-";
+      if (exact.is_number()) std::snprintf(over, sizeof over, "%.3f", exact.get<double>());
+      std::snprintf(line, sizeof line, "%9zu %-20s %9.3f %9.3f %9.1f %9.1f %12.2f %9zu %11s %7.0f\n", row["buildings"].get<std::size_t>(),
                     m["method"].get<std::string>().c_str(), m["cull_ms_median"].get<double>(), m["cull_ms_p95"].get<double>(),
                     m["pvs_mean"].get<double>(), m["cells_tested_mean"].get<double>(),
-                    m.value("oh_os_cull_ms_median_ratio", 0.0), m.value("frames_pvs_differs_from_oh_os", std::size_t{0}));
+                    m.value("oh_os_cull_ms_median_ratio", 0.0), m.value("frames_pvs_differs_from_oh_os", std::size_t{0}), over,
+                    m.value("ns_per_test", 0.0));
       out += line;
     }
   for (const auto& row : rows) {

@@ -19,8 +19,9 @@ struct ScalingOptions {
 };
 
 // One row per city size: {"grid", "buildings", "frames", "methods": [{method, cull_ms_median,
-// cull_ms_p95, pvs_mean, cells_tested_mean, horizon_nodes_mean, frames_pvs_differs_from_oh_os,
-// oh_os_cull_ms_median_ratio}]}.
+// cull_ms_p95, pvs_mean, cells_tested_mean, buildings_tested_mean, horizon_nodes_mean,
+// tests_over_exact_traversal (methods that sweep a quadtree, else null), ns_per_test,
+// frames_pvs_differs_from_oh_os, oh_os_cull_ms_median_ratio}]}.
 nlohmann::json run_scaling(const ScalingOptions& options);
 // The rows above as a printed table.
 std::string scaling_table(const nlohmann::json& rows);

@@ -5,6 +5,7 @@
 #include "core/progress.hpp"
 
 #include "engine/shrinking/circle_tiling.hpp"
+#include "engine/spatial/traversal_bound.hpp"
 
 #include <algorithm>
 #include <set>
@@ -222,8 +223,10 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   PresentScenes present_scenes(scene);
   std::unique_ptr<oracle::Oracle> oracle_now = std::make_unique<oracle::Oracle>(scene);
   const oracle::Oracle* truth = oracle_now.get();
+  const Scene* scene_now = &scene;  // the scene the built-in methods were built on
   const auto change_scene = [&](const std::vector<ObjectId>& appeared, const std::vector<ObjectId>& vanished) {
     const Scene& present = present_scenes.apply(appeared, vanished);
+    scene_now = &present;
     for (std::size_t m = 0; m < n; ++m) {
       if (engines[m].method->update_scene(present, appeared, vanished)) continue;
       if (engines[m].outside)
@@ -273,6 +276,9 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         if (!unsupported[m].empty()) continue;
         engines[m].method->set_frame(index, static_cast<double>(index) * frame_seconds);
         results[m] = engines[m].method->cull(camera);
+        // Outside the method's own timing: what an exact traversal of its quadtree would test.
+        if (const Quadtree* q = engines[m].method->swept_quadtree())
+          results[m]->stats.exact_traversal_tests = top_down_test_bound(*q, *scene_now, results[m]->pvs).total();
       }
     } catch (const SubjectError& e) {
       out.aborted = Abort{out.runs[m].method, e.frame(), SubjectError::kind_name(e.kind()), e.what()};
@@ -298,6 +304,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.totals.items_skipped += s.items_skipped;
       run.totals.guard_fires += s.guard_fires;
       run.totals.bound_tests += s.bound_tests;
+      run.totals.exact_traversal_tests += s.exact_traversal_tests;
       if (run.outside)
         for (std::size_t k = 0; k < builtin.size(); ++k)
           if (results[builtin[k]] && results[builtin[k]]->pvs == results[m]->pvs) ++run.frames_equal_to[k].second;

@@ -134,7 +134,7 @@ FrameSnapshot snapshot_from(const json& j, const std::string& what) {
 json statistics_json(const CullStatistics& s) {
   return {{"cells_tested", s.cells_tested},           {"buildings_tested", s.buildings_tested}, {"horizon_nodes", s.horizon_nodes},
           {"occluders_applied", s.occluders_applied}, {"items_skipped", s.items_skipped},       {"guard_fires", s.guard_fires},
-          {"bound_tests", s.bound_tests}};
+          {"bound_tests", s.bound_tests},           {"exact_traversal_tests", s.exact_traversal_tests}};
 }
 CullStatistics statistics_from(const json& j, const std::string& what) {
   const Reader r(j, what);
@@ -146,6 +146,7 @@ CullStatistics statistics_from(const json& j, const std::string& what) {
   s.items_skipped = r.get<std::uint64_t>("items_skipped");
   s.guard_fires = r.get<std::uint64_t>("guard_fires");
   s.bound_tests = j.contains("bound_tests") ? r.get<std::uint64_t>("bound_tests") : 0;  // files from before it was counted
+  s.exact_traversal_tests = j.contains("exact_traversal_tests") ? r.get<std::uint64_t>("exact_traversal_tests") : 0;  // likewise
   return s;
 }
 

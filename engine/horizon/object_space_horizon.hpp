@@ -36,6 +36,7 @@ class ObjectSpaceHorizonCulling final : public CullingMethod {
   // it (see above), so only the corrected variant is held to the gate.
   bool claims_conservative() const override { return rule_ == ShadowRule::conservative; }
   CullResult cull(const Camera& camera) override;
+  const Quadtree* swept_quadtree() const override { return &quadtree_; }
 
   // The horizon as left by the last query (for invariants, reports and the ΔH method).
   OcclusionHorizon& horizon() { return horizon_; }
