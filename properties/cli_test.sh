@@ -15,6 +15,10 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
 passes=0
+# A sanitizer build (the sanitize preset) runs several times slower and reserves terabytes of
+# shadow memory.
+sanitized=0
+grep -aq -e __asan_init -e __tsan_init -e __msan_init -e AddressSanitizer -e ThreadSanitizer "$cc" && sanitized=1
 pass() { passes=$((passes + 1)); }
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
@@ -95,9 +99,12 @@ expect_exit 2 "horizon bins not a power of two" "$cc" verify --generator manhatt
 expect_error_names "horizon bins not a power of two" "must be a power of two from 4"
 # Progress: on a terminal (script(1) gives the run one) a run over 2 s (80 frames: about 4 s) shows its stage and how
 # far it is on stderr; with --quiet, or when stderr is not a terminal, nothing.
-long_run=("$cc" verify --generator default --path-params '{"frames":80}' --method oh_os_conservative)
+# Under the sanitizers 20 frames already run well over 2 s (80 took about 20 s each, three times).
+progress_frames=80
+[ "$sanitized" = 1 ] && progress_frames=20
+long_run=("$cc" verify --generator default --path-params "{\"frames\":$progress_frames}" --method oh_os_conservative)
 script -qec "${long_run[*]@Q}" /dev/null >"$work/tty.out" 2>&1
-grep -q "methods and the oracle along the path: [0-9]*/80 frames ([0-9]*%), [0-9]* s, about [0-9]* s left" "$work/tty.out" && pass || fail "progress: nothing shown on a terminal"
+grep -q "methods and the oracle along the path: [0-9]*/$progress_frames frames ([0-9]*%), [0-9]* s, about [0-9]* s left" "$work/tty.out" && pass || fail "progress: nothing shown on a terminal"
 script -qec "${long_run[*]@Q} --quiet" /dev/null >"$work/tty-quiet.out" 2>&1
 grep -q "along the path:" "$work/tty-quiet.out" && fail "progress: shown with --quiet" || pass
 "${long_run[@]}" >/dev/null 2>"$work/not-tty.err"
@@ -464,7 +471,7 @@ expect_error_names "gate: unusable TMPDIR" "TMPDIR $work/no-such-dir: field '(fo
 # while generating, before the oracle's threads exist), and the report already there is left as
 # it was. Sanitizer builds reserve terabytes of shadow memory and cannot run under ulimit -v, so
 # they skip it.
-if grep -aq -e __asan_init -e __tsan_init -e __msan_init -e AddressSanitizer -e ThreadSanitizer "$cc"; then
+if [ "$sanitized" = 1 ]; then
   echo "cli_test: skipped the out-of-memory case (sanitizer build)"
 else
   echo '{"kept":true}' >"$work/kept.json"
