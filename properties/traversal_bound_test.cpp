@@ -73,6 +73,34 @@ TEST(TraversalBound, TheWholeCityCostsEveryCellAndEveryBuilding) {
   EXPECT_GT(tree.cells().size(), 20u) << "the city should need a tree of several levels";
 }
 
+// One counter over many PVSs (the reports' use, frame after frame) counts as a fresh one each
+// time, also after refusing a PVS halfway through marking it.
+TEST(TraversalBound, ACounterReusedFrameAfterFrameCountsLikeAFreshOne) {
+  const Scene scene = generators::scene_of({"manhattan", 7, {{"blocks_x", 6}, {"blocks_y", 5}}});
+  const Quadtree tree(scene, 4);
+  ExactTraversal counter(tree, scene);
+  auto every = [&](std::size_t k, std::size_t from) {
+    std::vector<ObjectId> ids;
+    for (std::size_t b = from; b < scene.buildings.size(); b += k) ids.push_back(scene.buildings[b].id);
+    return ids;
+  };
+  const std::vector<std::vector<ObjectId>> pvss = {every(3, 0), every(7, 2), {}, every(1, 0), every(40, 5), every(3, 0)};
+  std::vector<std::uint64_t> totals;
+  for (const auto& pvs : pvss) {
+    const TraversalBound reused = counter.tests_for(pvs), fresh = top_down_test_bound(tree, scene, pvs);
+    EXPECT_EQ(reused.cells, fresh.cells);
+    EXPECT_EQ(reused.buildings, fresh.buildings);
+    totals.push_back(reused.total());
+  }
+  EXPECT_EQ(totals.front(), totals.back());
+  EXPECT_LT(totals[4], totals[0]) << "a sparser PVS enters fewer cells";
+  std::vector<ObjectId> bad = every(5, 1);
+  bad.push_back(1u << 30);
+  EXPECT_THROW(counter.tests_for(bad), std::invalid_argument);
+  EXPECT_EQ(counter.tests_for({}).total(), 1u) << "the refused PVS left marks behind";
+  EXPECT_EQ(counter.tests_for(pvss[1]).total(), top_down_test_bound(tree, scene, pvss[1]).total());
+}
+
 // OH(OS) tests at least what the bound says for its own PVS, cell for cell and building for
 // building; and on some cases strictly more (cells that passed and led to nothing kept), which
 // is the distance the report measures.

@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <cstdio>
+#include <memory>
 
 #include "engine/method.hpp"
 #include "engine/spatial/traversal_bound.hpp"
@@ -42,6 +43,7 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
     for (std::size_t m = 0; m < methods.size(); ++m)
       if (options.methods[m] == "oh_os_conservative") reference = m;
     std::vector<CullResult> results(methods.size());
+    std::vector<std::unique_ptr<ExactTraversal>> traversals(methods.size());
     for (const Camera& camera : walk.frames) {
       for (std::size_t m = 0; m < methods.size(); ++m) {
         results[m] = methods[m]->cull(camera);
@@ -50,8 +52,10 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
         tally[m].nodes += static_cast<double>(results[m].stats.horizon_nodes);
         tally[m].totals.cells_tested += results[m].stats.cells_tested;
         tally[m].totals.buildings_tested += results[m].stats.buildings_tested;
-        if (const Quadtree* q = methods[m]->swept_quadtree())  // after the query's own timing
-          tally[m].totals.exact_traversal_tests += top_down_test_bound(*q, scene, results[m].pvs).total();
+        if (const Quadtree* q = methods[m]->swept_quadtree()) {  // after the query's own timing
+          if (!traversals[m]) traversals[m] = std::make_unique<ExactTraversal>(*q, scene);
+          tally[m].totals.exact_traversal_tests += traversals[m]->tests_for(results[m].pvs).total();
+        }
       }
       if (reference < methods.size())
         for (std::size_t m = 0; m < methods.size(); ++m) tally[m].differs += results[m].pvs != results[reference].pvs;

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <memory>
 #include <optional>
 
 #include "core/scene_io.hpp"
@@ -224,9 +225,11 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
   std::unique_ptr<oracle::Oracle> oracle_now = std::make_unique<oracle::Oracle>(scene);
   const oracle::Oracle* truth = oracle_now.get();
   const Scene* scene_now = &scene;  // the scene the built-in methods were built on
+  std::vector<std::unique_ptr<ExactTraversal>> traversals(n);  // per method that sweeps a quadtree
   const auto change_scene = [&](const std::vector<ObjectId>& appeared, const std::vector<ObjectId>& vanished) {
     const Scene& present = present_scenes.apply(appeared, vanished);
     scene_now = &present;
+    for (auto& t : traversals) t.reset();
     for (std::size_t m = 0; m < n; ++m) {
       if (engines[m].method->update_scene(present, appeared, vanished)) continue;
       if (engines[m].outside)
@@ -277,8 +280,10 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         engines[m].method->set_frame(index, static_cast<double>(index) * frame_seconds);
         results[m] = engines[m].method->cull(camera);
         // Outside the method's own timing: what an exact traversal of its quadtree would test.
-        if (const Quadtree* q = engines[m].method->swept_quadtree())
-          results[m]->stats.exact_traversal_tests = top_down_test_bound(*q, *scene_now, results[m]->pvs).total();
+        if (const Quadtree* q = engines[m].method->swept_quadtree()) {
+          if (!traversals[m] || &traversals[m]->quadtree() != q) traversals[m] = std::make_unique<ExactTraversal>(*q, *scene_now);
+          results[m]->stats.exact_traversal_tests = traversals[m]->tests_for(results[m]->pvs).total();
+        }
       }
     } catch (const SubjectError& e) {
       out.aborted = Abort{out.runs[m].method, e.frame(), SubjectError::kind_name(e.kind()), e.what()};

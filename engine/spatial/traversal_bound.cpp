@@ -3,60 +3,75 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 namespace cullcheck {
-namespace {
 
-struct Counter {
-  const Quadtree& quadtree;
-  const std::vector<char>& kept;  // by scene building index
-  TraversalBound bound;
-
-  bool holds(const Quadtree::Cell& cell) const {
-    const auto& order = quadtree.buildings();
-    for (std::uint32_t i = cell.first; i < cell.last; ++i)
-      if (kept[order[i]]) return true;
-    return false;
-  }
-  // `cell` was tested and holds a kept building: count what entering it tests.
-  void enter(const Quadtree::Cell& cell) {
-    if (cell.leaf()) {
-      bound.buildings += cell.last - cell.first;
-      return;
-    }
-    const auto& cells = quadtree.cells();
-    for (std::uint32_t c = cell.first_child; c < cell.first_child + 4; ++c) {
-      if (cells[c].last == cells[c].first) continue;
-      ++bound.cells;
-      if (holds(cells[c])) enter(cells[c]);
-    }
-  }
-};
-
-}  // namespace
-
-TraversalBound top_down_test_bound(const Quadtree& quadtree, const Scene& scene, const std::vector<ObjectId>& pvs) {
+ExactTraversal::ExactTraversal(const Quadtree& quadtree, const Scene& scene) : quadtree_(quadtree) {
   if (quadtree.buildings().size() != scene.buildings.size())
     throw std::invalid_argument("traversal bound: the quadtree holds " + std::to_string(quadtree.buildings().size()) +
                                 " buildings, the scene " + std::to_string(scene.buildings.size()) + ": not built on it");
-  std::vector<std::pair<ObjectId, std::uint32_t>> index_of;
-  index_of.reserve(scene.buildings.size());
-  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of.emplace_back(scene.buildings[b].id, b);
-  std::sort(index_of.begin(), index_of.end());
-  std::vector<char> kept(scene.buildings.size(), 0);
-  for (ObjectId id : pvs) {
-    const auto it = std::lower_bound(index_of.begin(), index_of.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
-    if (it == index_of.end() || it->first != id)
-      throw std::invalid_argument("traversal bound: PVS id " + std::to_string(id) + " is not a building of the scene");
-    for (auto same = it; same != index_of.end() && same->first == id; ++same) kept[same->second] = 1;
-  }
-  Counter counter{quadtree, kept, {}};
+  index_of_.reserve(scene.buildings.size());
+  for (std::uint32_t b = 0; b < scene.buildings.size(); ++b) index_of_.emplace_back(scene.buildings[b].id, b);
+  std::sort(index_of_.begin(), index_of_.end());
   const auto& cells = quadtree.cells();
-  if (cells.empty() || cells[0].last == cells[0].first) return counter.bound;
-  counter.bound.cells = 1;  // the root is tested whatever it holds
-  if (counter.holds(cells[0])) counter.enter(cells[0]);
-  return counter.bound;
+  const auto& order = quadtree.buildings();
+  leaf_of_.assign(scene.buildings.size(), 0);
+  parent_.assign(cells.size(), 0);
+  holds_.assign(cells.size(), 0);
+  for (std::uint32_t c = 0; c < cells.size(); ++c) {
+    if (cells[c].leaf()) {
+      for (std::uint32_t i = cells[c].first; i < cells[c].last; ++i) leaf_of_[order[i]] = c;
+      continue;
+    }
+    for (std::uint32_t k = cells[c].first_child; k < cells[c].first_child + 4; ++k) parent_[k] = c;
+  }
+}
+
+void ExactTraversal::enter(std::uint32_t cell, TraversalBound& bound) const {
+  const auto& cells = quadtree_.cells();
+  const Quadtree::Cell& c = cells[cell];
+  if (c.leaf()) {
+    bound.buildings += c.last - c.first;
+    return;
+  }
+  for (std::uint32_t k = c.first_child; k < c.first_child + 4; ++k) {
+    if (cells[k].last == cells[k].first) continue;
+    ++bound.cells;
+    if (holds_[k]) enter(k, bound);
+  }
+}
+
+TraversalBound ExactTraversal::tests_for(const std::vector<ObjectId>& pvs) {
+  TraversalBound bound;
+  const auto& cells = quadtree_.cells();
+  if (cells.empty() || cells[0].last == cells[0].first) {
+    if (!pvs.empty()) throw std::invalid_argument("traversal bound: a PVS of an empty city");
+    return bound;
+  }
+  // Mark the cells on the way from each PVS building's leaf up to the root.
+  for (ObjectId id : pvs) {
+    auto it = std::lower_bound(index_of_.begin(), index_of_.end(), std::pair<ObjectId, std::uint32_t>{id, 0});
+    if (it == index_of_.end() || it->first != id) {
+      for (std::uint32_t c : marked_) holds_[c] = 0;
+      marked_.clear();
+      throw std::invalid_argument("traversal bound: PVS id " + std::to_string(id) + " is not a building of the scene");
+    }
+    for (; it != index_of_.end() && it->first == id; ++it)
+      for (std::uint32_t c = leaf_of_[it->second]; !holds_[c]; c = parent_[c]) {
+        holds_[c] = 1;
+        marked_.push_back(c);
+        if (c == 0) break;
+      }
+  }
+  bound.cells = 1;  // the root is tested whatever it holds
+  if (holds_[0]) enter(0, bound);
+  for (std::uint32_t c : marked_) holds_[c] = 0;
+  marked_.clear();
+  return bound;
+}
+
+TraversalBound top_down_test_bound(const Quadtree& quadtree, const Scene& scene, const std::vector<ObjectId>& pvs) {
+  return ExactTraversal(quadtree, scene).tests_for(pvs);
 }
 
 }  // namespace cullcheck

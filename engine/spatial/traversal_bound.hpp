@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -25,8 +26,27 @@ struct TraversalBound {
   std::uint64_t total() const { return cells + buildings; }
 };
 
-// `quadtree` must be built on `scene`; `pvs`: building ids, any order. std::invalid_argument for an
-// id the scene lacks or a quadtree of another size.
+// Counts the bound frame after frame for one quadtree and the scene it was built on (both must
+// outlive it; std::invalid_argument when the quadtree holds another number of buildings). A PVS
+// costs its size times the tree's depth plus the cells entered, not a pass over the city.
+class ExactTraversal {
+ public:
+  ExactTraversal(const Quadtree& quadtree, const Scene& scene);
+  const Quadtree& quadtree() const { return quadtree_; }
+  // `pvs`: building ids, any order; std::invalid_argument for an id the scene lacks.
+  TraversalBound tests_for(const std::vector<ObjectId>& pvs);
+
+ private:
+  void enter(std::uint32_t cell, TraversalBound& bound) const;
+  const Quadtree& quadtree_;
+  std::vector<std::pair<ObjectId, std::uint32_t>> index_of_;  // (id, scene index), sorted
+  std::vector<std::uint32_t> leaf_of_;  // scene building index -> its leaf
+  std::vector<std::uint32_t> parent_;   // cell -> parent (the root's is itself)
+  std::vector<char> holds_;             // per cell, during a count: its subtree holds a PVS building
+  std::vector<std::uint32_t> marked_;   // the cells marked, to clear them afterwards
+};
+
+// One count, for a single PVS.
 TraversalBound top_down_test_bound(const Quadtree& quadtree, const Scene& scene, const std::vector<ObjectId>& pvs);
 
 }  // namespace cullcheck
