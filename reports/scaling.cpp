@@ -34,8 +34,7 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
     for (const std::string& name : options.methods) methods.push_back(make_method(name, scene));
     struct Tally {
       std::vector<double> ms, pvs;
-      double nodes = 0;
-      CullStatistics totals;  // cells, buildings and exact-traversal tests
+      CullStatistics totals;  // counts summed over frames
       std::size_t differs = 0;
     };
     std::vector<Tally> tally(methods.size());
@@ -47,15 +46,10 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
     for (const Camera& camera : walk.frames) {
       for (std::size_t m = 0; m < methods.size(); ++m) {
         results[m] = methods[m]->cull(camera);
+        take_exact_traversal(*methods[m], scene, traversals[m], results[m]);  // after the query's own timing
         tally[m].ms.push_back(results[m].stats.cull_ms);
         tally[m].pvs.push_back(static_cast<double>(results[m].pvs.size()));
-        tally[m].nodes += static_cast<double>(results[m].stats.horizon_nodes);
-        tally[m].totals.cells_tested += results[m].stats.cells_tested;
-        tally[m].totals.buildings_tested += results[m].stats.buildings_tested;
-        if (const Quadtree* q = methods[m]->swept_quadtree()) {  // after the query's own timing
-          if (!traversals[m]) traversals[m] = std::make_unique<ExactTraversal>(*q, scene);
-          tally[m].totals.exact_traversal_tests += traversals[m]->tests_for(results[m].pvs).total();
-        }
+        add_counts(tally[m].totals, results[m].stats);
       }
       if (reference < methods.size())
         for (std::size_t m = 0; m < methods.size(); ++m) tally[m].differs += results[m].pvs != results[reference].pvs;
@@ -70,7 +64,7 @@ nlohmann::json run_scaling(const ScalingOptions& options) {
                           {"pvs_mean", mean(t.pvs)},
                           {"cells_tested_mean", static_cast<double>(t.totals.cells_tested) / frames},
                           {"buildings_tested_mean", static_cast<double>(t.totals.buildings_tested) / frames},
-                          {"horizon_nodes_mean", t.nodes / frames},
+                          {"horizon_nodes_mean", static_cast<double>(t.totals.horizon_nodes) / frames},
                           {"tests_over_exact_traversal", tests_over_exact_traversal(t.totals)},
                           {"ns_per_test", ns_per_test(t.totals, mean(t.ms) * frames)}};
       if (reference < methods.size()) {

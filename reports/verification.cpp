@@ -17,6 +17,7 @@
 
 #include "core/scene_io.hpp"
 #include "reports/held_conservative.hpp"
+#include "reports/test_costs.hpp"
 #include "subjects/subject_error.hpp"
 
 namespace cullcheck {
@@ -280,10 +281,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         engines[m].method->set_frame(index, static_cast<double>(index) * frame_seconds);
         results[m] = engines[m].method->cull(camera);
         // Outside the method's own timing: what an exact traversal of its quadtree would test.
-        if (const Quadtree* q = engines[m].method->swept_quadtree()) {
-          if (!traversals[m] || &traversals[m]->quadtree() != q) traversals[m] = std::make_unique<ExactTraversal>(*q, *scene_now);
-          results[m]->stats.exact_traversal_tests = traversals[m]->tests_for(results[m]->pvs).total();
-        }
+        take_exact_traversal(*engines[m].method, *scene_now, traversals[m], *results[m]);
       }
     } catch (const SubjectError& e) {
       out.aborted = Abort{out.runs[m].method, e.frame(), SubjectError::kind_name(e.kind()), e.what()};
@@ -302,14 +300,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.answered_frames.push_back(index);
       run.protocol_ms.push_back(s.protocol_ms);
       run.pvs_size.push_back(static_cast<double>(results[m]->pvs.size()));
-      run.totals.cells_tested += s.cells_tested;
-      run.totals.buildings_tested += s.buildings_tested;
-      run.totals.horizon_nodes += s.horizon_nodes;
-      run.totals.occluders_applied += s.occluders_applied;
-      run.totals.items_skipped += s.items_skipped;
-      run.totals.guard_fires += s.guard_fires;
-      run.totals.bound_tests += s.bound_tests;
-      run.totals.exact_traversal_tests += s.exact_traversal_tests;
+      add_counts(run.totals, s);
       if (run.outside)
         for (std::size_t k = 0; k < builtin.size(); ++k)
           if (results[builtin[k]] && results[builtin[k]]->pvs == results[m]->pvs) ++run.frames_equal_to[k].second;
