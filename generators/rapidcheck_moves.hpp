@@ -4,7 +4,7 @@
 // purpose), stops (the same camera again) and jumps in height. A path is a start camera and a
 // list of moves, so RapidCheck shrinks it to fewer, smaller moves.
 //
-// Link target: cullcheck_generators_rc.
+// Link target: cullcheck_generators_rc (bodies in rapidcheck_moves.cpp).
 #pragma once
 
 #include <rapidcheck.h>
@@ -26,39 +26,15 @@ namespace rcgen {
 
 // One move. Step sizes: a pedestrian's frame (5 cm), a run (0.5 m) or a jump past a building
 // (1-12 m, more than a thin slab is wide); turns up to 45 degrees either way; rises up to 3 m.
-inline rc::Gen<Move> move() {
-  using detail::int_in;
-  const auto length = rc::gen::weightedOneOf<double>({{2, rc::gen::just(0.05)},
-                                                      {2, rc::gen::just(0.5)},
-                                                      {3, rc::gen::map(int_in(1, 12), [](int m) { return double(m); })}});
-  auto step = [length](MoveKind k) {
-    return rc::gen::map(length, [k](double a) { return Move{k, a}; });
-  };
-  return rc::gen::weightedOneOf<Move>(
-      {{2, step(MoveKind::forward)},
-       {1, step(MoveKind::backward)},
-       {4, step(MoveKind::left)},
-       {4, step(MoveKind::right)},
-       {2, rc::gen::map(detail::signed_grid(450, radians(0.1)), [](double a) { return Move{MoveKind::turn, a}; })},
-       {1, rc::gen::just(Move{MoveKind::stop, 0.0})},
-       {1, rc::gen::map(detail::signed_grid(30, 0.1), [](double a) { return Move{MoveKind::rise, a}; })}});
-}
+rc::Gen<Move> move();
 
 // 1-12 moves.
-inline rc::Gen<std::vector<Move>> moves() {
-  return rc::gen::mapcat(detail::int_in(1, 12), [](int n) { return rc::gen::container<std::vector<Move>>(n, move()); });
-}
+rc::Gen<std::vector<Move>> moves();
 
 // A start camera at street level, level (pitch and roll 0: the ΔH failure is about the plan
 // view), facing along an axis or near the azimuth wrap on purpose, with an ordinary or
 // 360-degree field of view.
-inline rc::Gen<Camera> level_street_camera(const Scene& scene) {
-  return rc::gen::map(street_camera(scene), [](Camera c) {
-    c.pitch = 0.0;
-    c.roll = 0.0;
-    return c;
-  });
-}
+rc::Gen<Camera> level_street_camera(const Scene& scene);
 
 }  // namespace rcgen
 }  // namespace cullcheck::generators
