@@ -79,7 +79,7 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!volume.may_intersect(box) || box_hidden(delta_, cell.bounds, cell.max_height, eye)) continue;
+      if (!volume.may_intersect(box) || cell_hidden(delta_, cell, eye)) continue;
       quadtree_.for_each_child(
           cell, [&](std::uint32_t c) { sweep.push({min_distance(e, cells[c].bounds), false, c}); },
           [&](std::uint32_t b) {

@@ -132,6 +132,13 @@ inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, V
   if (!span) return false;
   return horizon.hides(span->span, max_slope(top, eye.z, min_distance(e, box), max_distance(e, box)));
 }
+// A quadtree cell is hidden when both boxes of its height split are (Quadtree::Cell): its tall
+// buildings' box up to the tallest, and the whole cell up to the others' height. Sharper than
+// the whole cell up to the tallest, and as conservative: every building lies in one of them.
+inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, Vec3 eye) {
+  return box_hidden(horizon, cell.tall_bounds, cell.max_height, eye) &&
+         (!cell.has_rest() || box_hidden(horizon, cell.bounds, cell.rest_height, eye));
+}
 // A building whose box is not hidden is visible unless every CVP is hidden; `spans` receives
 // each CVP's span for its shadows.
 inline bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
@@ -213,7 +220,7 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!meets(volume, box) || box_hidden(horizon, cell.bounds, cell.max_height, eye)) continue;
+      if (!meets(volume, box) || cell_hidden(horizon, cell, eye)) continue;
       quadtree.for_each_child(
           cell,
           [&](std::uint32_t c) {

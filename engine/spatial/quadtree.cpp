@@ -1,6 +1,8 @@
 #include "engine/spatial/quadtree.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace cullcheck {
 
@@ -33,6 +35,7 @@ void Quadtree::build(std::uint32_t cell, Box2 square, std::uint32_t depth, const
     cells_[cell].bounds.extend(b.bounds.plan());
     cells_[cell].max_height = std::max(cells_[cell].max_height, b.height);
   }
+  split_by_height(cells_[cell], scene);
   if (last - first <= leaf_size || depth >= max_depth) return;
   // Split the building range into the four quadrants by centre; a stable partition keeps the
   // order (and so every traversal) deterministic.
@@ -62,6 +65,32 @@ void Quadtree::build(std::uint32_t cell, Box2 square, std::uint32_t depth, const
   for (int q = 0; q < 4; ++q) build(child + q, squares[q], depth + 1, scene, leaf_size, max_depth);
 }
 
+// Tallest first (ties by scene index, so the split is deterministic); the tall set grows one
+// building at a time and the rest's height is the next building's. Volume = tall box x max
+// height + whole box x rest height; taking every building (today's single box) is a candidate,
+// so the chosen pair never encloses more than it.
+void Quadtree::split_by_height(Cell& cell, const Scene& scene) {
+  std::vector<std::uint32_t> tallest(order_.begin() + cell.first, order_.begin() + cell.last);
+  std::sort(tallest.begin(), tallest.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const double ha = scene.buildings[a].height, hb = scene.buildings[b].height;
+    return ha != hb ? ha > hb : a < b;
+  });
+  const auto area = [](const Box2& b) { return b.empty() ? 0.0 : (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y); };
+  Box2 tall;
+  double least = HUGE_VAL;
+  for (std::size_t k = 0; k < tallest.size(); ++k) {
+    tall.extend(scene.buildings[tallest[k]].bounds.plan());
+    const bool rest = k + 1 < tallest.size();
+    const double rest_height = rest ? scene.buildings[tallest[k + 1]].height : 0.0;
+    const double volume = area(tall) * cell.max_height + area(cell.bounds) * rest_height;
+    if (volume < least) {
+      least = volume;
+      cell.tall_bounds = tall;
+      cell.rest_height = rest ? rest_height : -std::numeric_limits<double>::infinity();
+    }
+  }
+}
+
 std::string Quadtree::check_invariants(const Scene& scene) const {
   for (std::size_t c = 0; c < cells_.size(); ++c) {
     const Cell& cell = cells_[c];
@@ -72,7 +101,12 @@ std::string Quadtree::check_invariants(const Scene& scene) const {
         return "cell " + std::to_string(c) + " does not enclose building " + std::to_string(b.id);
       if (b.height > cell.max_height)
         return "cell " + std::to_string(c) + " max height is below building " + std::to_string(b.id);
+      const bool tall = cell.tall_bounds.contains(box.lo) && cell.tall_bounds.contains(box.hi);
+      if (!tall && !(b.height <= cell.rest_height))
+        return "cell " + std::to_string(c) + " height split leaves out building " + std::to_string(b.id);
     }
+    if (!cell.tall_bounds.empty() && (!cell.bounds.contains(cell.tall_bounds.lo) || !cell.bounds.contains(cell.tall_bounds.hi)))
+      return "cell " + std::to_string(c) + " tall box reaches outside its bounds";
     if (!cell.leaf()) {
       if (cells_[cell.first_child].first != cell.first || cells_[cell.first_child + 3].last != cell.last)
         return "cell " + std::to_string(c) + " children do not cover its building range";
