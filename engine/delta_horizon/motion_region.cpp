@@ -318,11 +318,19 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     // building's own test may read.
     if (!visible) uncertain_reach_.raise(widened(candidates[i].reach, 2 * shrunk_.bin_width()), candidates[i].nearest);
   };
+  // Each decision at key k sees the grown shadows keyed below k, and only those: a candidate Y
+  // whose shadow OH(OS) may merge before X's test from some eye of the region has far_Y - 2ε <
+  // nearest_X, so its key is below X's, and Y was swept before the sweep passed X's key. Merging
+  // up to the next item instead (as this did before) took in shadows that depend on which cells
+  // and buildings happen to be swept in between: a sharper cell test then left fewer buildings
+  // certainly visible.
   auto decide_before = [&](double distance) {
     while (!decisions.empty() && decisions.top().first < distance) {
+      pending_grown.merge_nearer_than(decisions.top().first, grown_, stats);
       decide(decisions.top().second);
       decisions.pop();
     }
+    pending_grown.merge_nearer_than(distance, grown_, stats);
   };
 
   std::vector<std::optional<ConvexSpan>> spans;
@@ -330,14 +338,14 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     const SweepItem item = sweep.top();
     sweep.pop();
     pending_shrunk.merge_nearer_than(item.distance, shrunk_, stats);
-    pending_grown.merge_nearer_than(item.distance, grown_, stats);
     decide_before(item.distance);
     if (!item.is_building) {
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
       if (!may_meet(volume, box, reach, region.turn)) continue;
-      if (hidden_box(cell.bounds, cell.max_height)) {
+      // Both boxes of the cell's height split (as cell_hidden, engine/horizon/horizon_sweep.hpp).
+      if (hidden_box(cell.tall_bounds, cell.max_height) && (!cell.has_rest() || hidden_box(cell.bounds, cell.rest_height))) {
         hidden_count_ += cell.last - cell.first;
         continue;
       }
@@ -390,7 +398,6 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
     decided_visible.push_back(0);
     decisions.push({widen(item.distance + two_eps), candidates.size() - 1});
   }
-  pending_grown.merge_all(grown_, stats);
   decide_before(HUGE_VAL);
 
   for (std::size_t i = 0; i < candidates.size(); ++i) {
