@@ -25,6 +25,8 @@ Quadtree::Quadtree(const Scene& scene, std::uint32_t leaf_size, std::uint32_t ma
   build(0, square, 0, scene, std::max(1u, leaf_size), max_depth);
   centres_.clear();
   centres_.shrink_to_fit();
+  by_height_ = {};
+  scratch_ = {};
 }
 
 void Quadtree::build(std::uint32_t cell, Box2 square, std::uint32_t depth, const Scene& scene, std::uint32_t leaf_size,
@@ -35,8 +37,10 @@ void Quadtree::build(std::uint32_t cell, Box2 square, std::uint32_t depth, const
     cells_[cell].bounds.extend(b.bounds.plan());
     cells_[cell].max_height = std::max(cells_[cell].max_height, b.height);
   }
-  split_by_height(cells_[cell], scene);
-  if (last - first <= leaf_size || depth >= max_depth) return;
+  if (last - first <= leaf_size || depth >= max_depth) {
+    split_by_height(cell, scene);
+    return;
+  }
   // Split the building range into the four quadrants by centre; a stable partition keeps the
   // order (and so every traversal) deterministic.
   const Vec2 mid = square.center();
@@ -63,25 +67,39 @@ void Quadtree::build(std::uint32_t cell, Box2 square, std::uint32_t depth, const
     cells_.push_back(c);
   }
   for (int q = 0; q < 4; ++q) build(child + q, squares[q], depth + 1, scene, leaf_size, max_depth);
+  split_by_height(cell, scene);
 }
 
 // Tallest first (ties by scene index, so the split is deterministic); the tall set grows one
 // building at a time and the rest's height is the next building's. Volume = tall box x max
 // height + whole box x rest height; taking every building (today's single box) is a candidate,
-// so the chosen pair never encloses more than it.
-void Quadtree::split_by_height(Cell& cell, const Scene& scene) {
-  std::vector<std::uint32_t> tallest(order_.begin() + cell.first, order_.begin() + cell.last);
-  std::sort(tallest.begin(), tallest.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const double ha = scene.buildings[a].height, hb = scene.buildings[b].height;
-    return ha != hb ? ha > hb : a < b;
-  });
+// so the chosen pair never encloses more than it. A leaf sorts its few buildings; an inner cell
+// merges its children's sorted runs (built just before), so the whole tree costs one sort.
+void Quadtree::split_by_height(std::uint32_t index, const Scene& scene) {
+  Cell& cell = cells_[index];
+  if (by_height_.size() != order_.size()) by_height_.resize(order_.size()), scratch_.resize(order_.size());
+  const auto taller = [](const Ranked& a, const Ranked& b) { return a.height != b.height ? a.height > b.height : a.index < b.index; };
+  const auto run = by_height_.begin();
+  if (cell.leaf()) {
+    for (std::uint32_t k = cell.first; k < cell.last; ++k) {
+      const Building& b = scene.buildings[order_[k]];
+      by_height_[k] = {b.height, order_[k], b.bounds.plan()};
+    }
+    std::sort(run + cell.first, run + cell.last, taller);
+  } else {
+    const Cell* child = &cells_[cell.first_child];
+    const auto out = scratch_.begin();
+    std::merge(run + child[0].first, run + child[0].last, run + child[1].first, run + child[1].last, out + child[0].first, taller);
+    std::merge(run + child[2].first, run + child[2].last, run + child[3].first, run + child[3].last, out + child[2].first, taller);
+    std::merge(out + child[0].first, out + child[2].first, out + child[2].first, out + child[3].last, run + cell.first, taller);
+  }
   const auto area = [](const Box2& b) { return b.empty() ? 0.0 : (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y); };
   Box2 tall;
   double least = HUGE_VAL;
-  for (std::size_t k = 0; k < tallest.size(); ++k) {
-    tall.extend(scene.buildings[tallest[k]].bounds.plan());
-    const bool rest = k + 1 < tallest.size();
-    const double rest_height = rest ? scene.buildings[tallest[k + 1]].height : 0.0;
+  for (std::uint32_t k = cell.first; k < cell.last; ++k) {
+    tall.extend(by_height_[k].box);
+    const bool rest = k + 1 < cell.last;
+    const double rest_height = rest ? by_height_[k + 1].height : 0.0;
     const double volume = area(tall) * cell.max_height + area(cell.bounds) * rest_height;
     if (volume < least) {
       least = volume;

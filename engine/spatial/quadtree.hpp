@@ -61,10 +61,19 @@ class Quadtree {
  private:
   void build(std::uint32_t cell, Box2 square, std::uint32_t depth, const Scene& scene, std::uint32_t leaf_size,
              std::uint32_t max_depth);
-  void split_by_height(Cell& cell, const Scene& scene);
+  // Sorts the cell's range of by_height_ (merging its children's sorted runs), then splits.
+  void split_by_height(std::uint32_t cell, const Scene& scene);
   std::vector<Cell> cells_;
   std::vector<std::uint32_t> order_;
   std::vector<Vec2> centres_;
+  // During the build: each built cell's buildings, tallest first, in the cell's range of order_
+  // (height, scene index and plan box copied, so merging and scanning read memory in order).
+  struct Ranked {
+    double height;
+    std::uint32_t index;
+    Box2 box;
+  };
+  std::vector<Ranked> by_height_, scratch_;
 };
 
 }  // namespace cullcheck
