@@ -13,12 +13,10 @@ namespace cullcheck::generators {
 namespace {
 
 // Stream tags: one stream per block and one for the plaza's kiosks (random.hpp explains why).
-constexpr std::uint64_t kBlockStream = 0x4D414E48;   // "MANH"
-constexpr std::uint64_t kKioskStream = 0x4B494F53;   // "KIOS"
+constexpr std::uint64_t kManhattanBlockStream = 0x4D414E48;  // "MANH"
+constexpr std::uint64_t kKioskStream = 0x4B494F53;           // "KIOS"
 
-Millimetres draw_mm(Random& rng, double lo, double hi) { return rng.uniform_int(to_mm(lo), to_mm(hi)); }
-
-Building box_building(ObjectId id, const MillimetreBox& b, Millimetres height) {
+Building mm_box_building(ObjectId id, const MillimetreBox& b, Millimetres height) {
   Building out;
   out.id = id;
   out.height = metres(height);
@@ -53,7 +51,7 @@ Building lot_building(ObjectId id, const MillimetreBox& lot, const ManhattanPara
     w = jittered(aw), d = jittered(ad);
   }
   const Millimetres x = avail.lo_x + rng.uniform_int(0, aw - w), y = avail.lo_y + rng.uniform_int(0, ad - d);
-  return box_building(id, {x, y, x + w, y + d}, height);
+  return mm_box_building(id, {x, y, x + w, y + d}, height);
 }
 
 // Kiosks stand inside the emptied blocks only (2 m in from their edges), never on the streets,
@@ -78,7 +76,7 @@ void add_kiosks(Scene& scene, const ManhattanLayout& layout, const ManhattanPara
       if (!clear) continue;
       placed.push_back(box);
       const Millimetres height = draw_mm(rng, p.kiosk_min_height, p.kiosk_max_height);
-      scene.buildings.push_back(box_building(static_cast<ObjectId>(scene.buildings.size()), box, height));
+      scene.buildings.push_back(mm_box_building(static_cast<ObjectId>(scene.buildings.size()), box, height));
       break;
     }
   }
@@ -93,7 +91,7 @@ Scene manhattan_like(const ManhattanParams& p, std::uint64_t seed, const std::st
   for (int j = 0; j < p.blocks_y; ++j) {
     for (int i = 0; i < p.blocks_x; ++i) {
       if (layout.is_plaza_block(i, j)) continue;
-      Random rng = Random::stream(seed, kBlockStream, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j));
+      Random rng = Random::stream(seed, kManhattanBlockStream, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j));
       for (const MillimetreBox& lot : lots_of_block(layout.block_box(i, j), p.buildings_per_block))
         scene.buildings.push_back(lot_building(static_cast<ObjectId>(scene.buildings.size()), lot, p, rng));
     }

@@ -6,17 +6,24 @@
 // centred on the origin; street k's centre line (k = 0..n) lies between block k-1 and block k.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/geometry.hpp"
 #include "generators/city.hpp"
 #include "generators/grid_snap.hpp"
+#include "generators/random.hpp"
 
 namespace cullcheck::generators {
 
 struct MillimetreBox {
   Millimetres lo_x = 0, lo_y = 0, hi_x = 0, hi_y = 0;
 };
+
+// A length drawn uniformly in whole millimetres: between two lengths in metres, or between two
+// lengths in millimetres (the upper one raised to the lower where it falls below).
+inline Millimetres draw_mm(Random& rng, double lo, double hi) { return rng.uniform_int(to_mm(lo), to_mm(hi)); }
+inline Millimetres draw_mm(Random& rng, Millimetres lo, Millimetres hi) { return rng.uniform_int(lo, std::max(lo, hi)); }
 
 struct ManhattanLayout {
   int blocks_x = 0, blocks_y = 0;

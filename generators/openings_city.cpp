@@ -18,10 +18,10 @@
 namespace cullcheck::generators {
 namespace {
 
-constexpr std::uint64_t kBlockStream = 0x4F50424C;   // "OPBL"
-constexpr std::uint64_t kFrontStream = 0x4F504652;   // "OPFR"
-constexpr std::uint64_t kBridgeStream = 0x4F504252;  // "OPBR"
-constexpr Millimetres kPier = 300;                   // least wall beside, above and below an opening
+constexpr std::uint64_t kOpeningsBlockStream = 0x4F50424C;  // "OPBL"
+constexpr std::uint64_t kFrontStream = 0x4F504652;          // "OPFR"
+constexpr std::uint64_t kBridgeStream = 0x4F504252;         // "OPBR"
+constexpr Millimetres kPier = 300;                          // least wall beside, above and below an opening
 
 ManhattanParams street_grid(const OpeningsParams& p) {
   ManhattanParams m;
@@ -29,9 +29,6 @@ ManhattanParams street_grid(const OpeningsParams& p) {
   m.buildings_per_block = 1, m.setback = 0.0;
   return m;
 }
-
-Millimetres draw_mm(Random& rng, double lo, double hi) { return rng.uniform_int(to_mm(lo), to_mm(hi)); }
-Millimetres draw_mm(Random& rng, Millimetres lo, Millimetres hi) { return rng.uniform_int(lo, std::max(lo, hi)); }
 
 class CityBuilder {
  public:
@@ -181,7 +178,7 @@ class CityBuilder {
     for (int j = 0; j < p_.blocks_y; ++j)
       for (int i = 0; i < p_.blocks_x; ++i) {
         const MillimetreBox box = layout.block_box(i, j);
-        Random rng = Random::stream(seed_, kBlockStream, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j));
+        Random rng = Random::stream(seed_, kOpeningsBlockStream, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j));
         // The core's lots, then the corners (south-west, south-east, north-east, north-west).
         const MillimetreBox core{box.lo_x + depth, box.lo_y + depth, box.hi_x - depth, box.hi_y - depth};
         const PlanFrame plan{0, 0, 1, 0};

@@ -22,7 +22,7 @@ using generators::Move;
 using generators::MoveKind;
 
 // Manhattan blocks with narrow streets and thin slabs: what a lateral step can uncover.
-SceneSource search_scene(std::uint64_t seed, int index) {
+SceneSource lateral_move_scene(std::uint64_t seed, int index) {
   return seeded_street_city(seed, index, 0xDE17A, {2, 5, 1, 4, 20, 50, 6, 16, 0.5});
 }
 
@@ -64,7 +64,7 @@ std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& opt
                 [&options, oracle_options = for_one_scene(oracle_options, options.threads, options.scenes)](int index, std::vector<ClaimCheck>& partial) {
     ClaimCheck& published = partial[0];
     ClaimCheck& guarded = partial[1];
-    const SceneSource source = search_scene(options.seed, index);
+    const SceneSource source = lateral_move_scene(options.seed, index);
     const Scene scene = source.load();
     if (scene.buildings.empty()) return;
     const generators::OpenSpace open(scene);

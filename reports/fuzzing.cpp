@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "core/scene_io.hpp"
 #include "reports/frame_pictures.hpp"
@@ -23,8 +24,6 @@ namespace cullcheck {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct CaseOutcome {
   bool failed = false;

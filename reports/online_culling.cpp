@@ -9,6 +9,7 @@
 #include <set>
 
 #include "engine/online_image_space/online_culling.hpp"
+#include "core/elapsed.hpp"
 #include "engine/online_image_space/scene_polygons.hpp"
 #include "core/scene_timeline.hpp"
 #include "generators/camera_paths.hpp"
@@ -54,10 +55,6 @@ struct Track {
   std::size_t error_frames = 0;
   double most = 0;
 };
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Track online_track(const Scene& scene, OnlineImageSpaceCulling::Variant variant, const OnlineCullingOptions& o) {
   Track t;

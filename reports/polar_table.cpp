@@ -7,6 +7,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "engine/polar_diagram/polar_diagram.hpp"
 #include "engine/polar_diagram/visibility_fan.hpp"
@@ -21,8 +22,6 @@ namespace {
 
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 template <class F>
 double median_ms(int repeats, F&& build) {

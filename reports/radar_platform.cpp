@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "core/sorted_sets.hpp"
 #include "core/terrain_scene.hpp"
@@ -20,10 +21,6 @@ namespace cullcheck {
 namespace {
 
 using nlohmann::json;
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "core/replay_text.hpp"
 #include "core/sorted_sets.hpp"
@@ -17,10 +18,6 @@
 
 namespace cullcheck {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 double degrees(double radians) { return radians * 180.0 / kPi; }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "engine/radar/triangle_grid.hpp"
 #include "generators/terrain_gen.hpp"
@@ -19,10 +20,6 @@ namespace cullcheck {
 namespace {
 
 using nlohmann::json;
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 const std::vector<std::string> kRules = {"thesis", "conservative"};
 // The thesis's 60-degree coverage, centred on north; and the full circle.

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/elapsed.hpp"
 #include "core/formats/footprint_formats.hpp"
 #include "core/parallel_indices.hpp"
 #include "engine/slice_wise/slice_rectangle.hpp"
@@ -27,8 +28,6 @@ namespace {
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 using namespace slice_wise;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct CellKey {
   long long i = 0, j = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/elapsed.hpp"
 #include "core/utf8.hpp"
 #include <iterator>
 
@@ -11,8 +12,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using Kind = SubjectError::Kind;
-
-double ms_since(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 std::string seconds_text(double s) {
   char text[32];

@@ -23,7 +23,7 @@ using nlohmann::json;
 
 constexpr double kGroundTolerance = 0.05;  // m: a face this close to the object's lowest point is on the ground
 
-void note(ImportReport& report, const std::string& text) { add_note(report, text, "(further objects are counted, not named)"); }
+void note_object(ImportReport& report, const std::string& text) { add_note(report, text, "(further objects are counted, not named)"); }
 
 // One surface of a geometry: its rings (outer first) as vertex indices, and its semantic type.
 struct Surface {
@@ -233,7 +233,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       if (type != "Building" && type != "BuildingPart") {
         ++report.skipped_not_polygon;
         if (type == "TINRelief") ++terrain;
-        else note(report, name + ": a " + (type.empty() ? std::string("typeless object") : type) + ", not a building, skipped");
+        else note_object(report, name + ": a " + (type.empty() ? std::string("typeless object") : type) + ", not a building, skipped");
         continue;
       }
       const json* best = nullptr;
@@ -247,7 +247,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
           ++made_of_parts;  // its parts stand for it
         } else {
           ++report.skipped_not_polygon;
-          note(report, name + ": a " + type + " without surface geometry, skipped");
+          note_object(report, name + ": a " + type + " without surface geometry, skipped");
         }
         continue;
       }
@@ -289,7 +289,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
         }
         if (m.triangles.size() == triangles_before) {
           ++report.skipped_invalid;
-          note(report, name + ": no surface spans any area, skipped");
+          note_object(report, name + ": no surface spans any area, skipped");
           continue;
         }
         if (target == &part) meshes.push_back(std::move(part));
@@ -308,7 +308,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       if (!height && options.height_attribute.empty() && options.storeys_attribute.empty() && z1 > z0) height = z1 - z0;
       if (!height) {
         ++report.skipped_no_height;
-        note(report, name + ": no usable height, skipped");
+        note_object(report, name + ": no usable height, skipped");
         continue;
       }
       // Its footprints: the GroundSurfaces, else the faces lying flat at its lowest point, else
@@ -330,7 +330,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
         }
       if (grounds.empty()) {
         grounds.push_back(convex_hull(plan_points));
-        note(report, name + ": no ground surface, footprint from the convex hull of its plan");
+        note_object(report, name + ": no ground surface, footprint from the convex hull of its plan");
       }
       report.holes_filled += holes;
       for (std::size_t k = 0; k < grounds.size(); ++k) {
@@ -339,13 +339,13 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       }
     }
     if (terrain > 0)
-      note(report, std::to_string(terrain) + " TINRelief (terrain) left out: " +
+      note_object(report, std::to_string(terrain) + " TINRelief (terrain) left out: " +
                        (as_meshes ? "each mesh object is lowered to stand on z = 0"
                                                 : "buildings stand on z = 0, heights above their own ground"));
-    if (flat_surfaces > 0) note(report, std::to_string(flat_surfaces) + " surfaces span no area: left out of their meshes");
+    if (flat_surfaces > 0) note_object(report, std::to_string(flat_surfaces) + " surfaces span no area: left out of their meshes");
     if (made_of_parts > 0 && !options.cityjson_buildings)
-      note(report, std::to_string(made_of_parts) + " Buildings made of BuildingParts: each part a building");
-    if (parts_joined > 0) note(report, std::to_string(parts_joined) + " BuildingParts joined to their Building's mesh");
+      note_object(report, std::to_string(made_of_parts) + " Buildings made of BuildingParts: each part a building");
+    if (parts_joined > 0) note_object(report, std::to_string(parts_joined) + " BuildingParts joined to their Building's mesh");
     // A building whose every part was skipped leaves an empty mesh.
     std::erase_if(meshes, [](const Mesh& m) { return m.triangles.empty(); });
 
@@ -390,7 +390,7 @@ Scene cityjson_from_text(const std::string& text, const FootprintOptions& option
       if (why.empty() && f.height > kMaxHeight) why = "a height beyond 1e4 m";
       if (!why.empty()) {
         ++report.skipped_invalid;
-        note(report, f.object + ": footprint " + why + (changed ? " after repair" : "") + ", skipped");
+        note_object(report, f.object + ": footprint " + why + (changed ? " after repair" : "") + ", skipped");
         continue;
       }
       if (changed) ++report.rings_repaired;

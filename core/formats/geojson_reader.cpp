@@ -27,7 +27,7 @@ struct Part {
 
 std::string feature_name(std::size_t i) { return "features[" + std::to_string(i) + "]"; }
 
-void note(ImportReport& report, const std::string& text) {
+void note_feature(ImportReport& report, const std::string& text) {
   add_note(report, text, "(further skipped features are counted, not named)");
 }
 
@@ -134,7 +134,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
                                     : "";
       if (gtype != "Polygon" && gtype != "MultiPolygon") {
         ++report.skipped_not_polygon;
-        note(report, name + ": geometry " + (gtype.empty() ? "null" : gtype) + " is no footprint, skipped");
+        note_feature(report, name + ": geometry " + (gtype.empty() ? "null" : gtype) + " is no footprint, skipped");
         continue;
       }
       if (!geometry.contains("coordinates")) throw InputError(where, name + ".geometry.coordinates", "is missing");
@@ -152,7 +152,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
         }
         if (outers.empty()) {
           ++report.skipped_invalid;
-          note(report, name + ": an empty MultiPolygon, skipped");
+          note_feature(report, name + ": an empty MultiPolygon, skipped");
           continue;
         }
       }
@@ -160,7 +160,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
       if (!height) {
         if (!options.missing_height) {
           ++report.skipped_no_height;
-          note(report, name + ": no usable height, skipped (--missing-height gives one)");
+          note_feature(report, name + ": no usable height, skipped (--missing-height gives one)");
           continue;
         }
         height = options.missing_height;
@@ -168,7 +168,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
       }
       if (*height > kMaxHeight) {
         ++report.skipped_invalid;
-        note(report, name + ": height " + std::to_string(*height) + " m is beyond 1e4 m, skipped");
+        note_feature(report, name + ": height " + std::to_string(*height) + " m is beyond 1e4 m, skipped");
         continue;
       }
       report.holes_filled += holes;
@@ -223,7 +223,7 @@ Scene geojson_from_text(const std::string& text, const FootprintOptions& options
       std::string why = footprint_problem(ring);
       if (!why.empty()) {
         ++report.skipped_invalid;
-        note(report, name + ": footprint " + why + (changed ? " after repair" : "") + ", skipped");
+        note_feature(report, name + ": footprint " + why + (changed ? " after repair" : "") + ", skipped");
         continue;
       }
       if (changed) ++report.rings_repaired;

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/elapsed.hpp"
 #include "engine/online_image_space/occlusion_mask.hpp"
 
 namespace cullcheck {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
 // Angle between two cameras' view directions plus their difference in roll.
 double turn_between(const Camera& a, const Camera& b) {

@@ -8,12 +8,12 @@
 #include <queue>
 #include <stdexcept>
 
+#include "core/elapsed.hpp"
+
 namespace cullcheck::slice_wise {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 double distance_to(Vec3 p, const Box3& b) {
   const double dx = std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x});

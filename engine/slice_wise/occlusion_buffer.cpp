@@ -8,7 +8,7 @@ namespace {
 
 constexpr double kSliverWidth = 1e-9;  // pixels: an uncovered piece thinner than this counts as covered
 constexpr std::size_t kMaxFragmentsEvaluated = 256;
-constexpr std::size_t kMaxPieces = 64;
+constexpr std::size_t kMaxCoverPieces = 64;
 
 double cross2(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -300,7 +300,7 @@ double OcclusionBuffer::evaluate(std::size_t px) {
         rest = clip(rest, a, b, true);
       }
     }
-    if (next.size() > kMaxPieces) return exact_[px];  // too fragmented to settle: not covered below `full`
+    if (next.size() > kMaxCoverPieces) return exact_[px];  // too fragmented to settle: not covered below `full`
     pieces.swap(next);
     if (pieces.empty()) return exact_[px] = depth;
   }

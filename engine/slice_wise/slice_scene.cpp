@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/elapsed.hpp"
 #include "core/parallel_indices.hpp"
 #include "engine/slice_wise/solid_parts.hpp"
 #include "engine/slice_wise/voxel_erosion.hpp"
@@ -15,8 +16,6 @@ namespace cullcheck::slice_wise {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 Box3 box_of(const TriangleMesh& m) {
   Box3 b;

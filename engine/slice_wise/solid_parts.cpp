@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kPlaneTolerance = 1e-7;  // metres: a vertex this close to a plane lies in it
 constexpr double kLeftShare = 1e-12;      // of a triangle's area: less left uncovered counts as covered
-constexpr std::size_t kMaxPieces = 256;   // beyond this, a triangle is kept as boundary
+constexpr std::size_t kMaxSolidPieces = 256;   // beyond this, a triangle is kept as boundary
 
 using Polygon = std::vector<Vec2>;
 
@@ -141,9 +141,9 @@ SolidParts solid_parts(const MeshObject& m) {
       touched = true;
       for (const Polygon& piece : left) subtract(piece, cover, next);
       left.swap(next);
-      if (left.empty() || left.size() > kMaxPieces) break;
+      if (left.empty() || left.size() > kMaxSolidPieces) break;
     }
-    if (!touched || left.size() > kMaxPieces) continue;
+    if (!touched || left.size() > kMaxSolidPieces) continue;
     double remaining = 0;
     for (const Polygon& piece : left) remaining += area2(piece);
     if (remaining <= kLeftShare * total) {

@@ -14,8 +14,6 @@ namespace {
 
 using namespace testing;
 
-const Camera kStreetEast = level_camera({0, 0, 1.7}, 0.0);
-
 TEST(Exact2d, BuildingBehindAWiderOneIsHiddenAndOneBesideIsVisibleWithItsExactAngle) {
   const Scene scene = scene_of({box_building(1, 10, -3, 12, 3, 10), box_building(2, 20, -2, 22, 2, 8),
                                 box_building(3, 20, 5, 22, 8, 8)});

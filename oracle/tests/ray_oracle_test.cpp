@@ -13,9 +13,6 @@ namespace {
 
 using namespace testing;
 
-// Eye at street level, looking east (+x).
-const Camera kStreetEast = level_camera({0, 0, 1.7}, 0.0);
-
 TEST(RayOracle, BuildingBehindAWiderLowerOneIsNotWitnessed) {
   // A (10 m high, 6 m wide) hides B (8 m high) completely: B's top is at elevation 17.5 deg,
   // A's front top edge at 39.7 deg, and in plan B lies inside A's shadow.

@@ -84,6 +84,9 @@ inline Camera level_camera(Vec3 eye, double yaw, double hfov = 60 * kDeg, double
   return c;
 }
 
+// Eye at street level, looking east (+x), 60 x 60 degrees.
+inline const Camera kStreetEast = level_camera({0, 0, 1.7}, 0.0);
+
 // An orthographic camera: a width x height metre box around the view axis through `eye`.
 inline Camera ortho_camera(Vec3 eye, double yaw, double pitch, double width, double height) {
   Camera c;

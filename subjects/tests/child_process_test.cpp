@@ -20,6 +20,7 @@
 #include <string>
 #include <thread>
 
+#include "core/elapsed.hpp"
 #include "subjects/child_process.hpp"
 
 namespace cullcheck {
@@ -27,8 +28,6 @@ namespace {
 
 using Io = ChildProcess::Io;
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 ChildProcess::Options sh(const std::string& command) { return {command, ""}; }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "core/elapsed.hpp"
 #include "core/scene_io.hpp"
 #include "subjects/tests/subject_error_of.hpp"
 #include "subjects/subject_method.hpp"
@@ -23,8 +24,6 @@ namespace {
 using Kind = SubjectError::Kind;
 using test_support::error_of;
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Buildings 1 and 3 and mesh 5: three objects, ids sorted [1, 3, 5].
 Scene three_objects() {

@@ -37,7 +37,7 @@ std::string ascii_grid(const std::string& name, const std::vector<std::vector<do
   return path;
 }
 
-std::string error_of(const std::string& path, const DemOptions& o) {
+std::string dem_error_of(const std::string& path, const DemOptions& o) {
   try {
     read_dem(path, o);
   } catch (const InputError& e) {
@@ -125,28 +125,28 @@ TEST(DemImport, AWindowAndAStepKeepEveryStepthCell) {
 
 TEST(DemImport, BadFilesAndOptionsAreInputErrorsNamingTheField) {
   const std::string path = ascii_grid("bad", kSmall, 500000, 5200000, 10);
-  EXPECT_NE(error_of(path, {}).find("field 'crs'"), std::string::npos) << error_of(path, {});  // no .prj, no override
+  EXPECT_NE(dem_error_of(path, {}).find("field 'crs'"), std::string::npos) << dem_error_of(path, {});  // no .prj, no override
   DemOptions o = utm();
   o.column = 4;
-  EXPECT_NE(error_of(path, o).find("field 'window'"), std::string::npos);
+  EXPECT_NE(dem_error_of(path, o).find("field 'window'"), std::string::npos);
   o = utm();
   o.columns = 9;
-  EXPECT_NE(error_of(path, o).find("field 'window'"), std::string::npos);
+  EXPECT_NE(dem_error_of(path, o).find("field 'window'"), std::string::npos);
   o = utm();
   o.step = 0;
-  EXPECT_NE(error_of(path, o).find("field 'step'"), std::string::npos);
+  EXPECT_NE(dem_error_of(path, o).find("field 'step'"), std::string::npos);
   o = utm();
   o.step = 3;  // 2 x 1 cells left
-  EXPECT_NE(error_of(path, o).find("a terrain needs 2 x 2"), std::string::npos);
+  EXPECT_NE(dem_error_of(path, o).find("a terrain needs 2 x 2"), std::string::npos);
   o = utm();
   o.crs = "EPSG:5773";  // a vertical CRS
-  EXPECT_NE(error_of(path, o).find("field 'crs'"), std::string::npos);
-  EXPECT_NE(error_of("/nonexistent/dem.tif", utm()).find("field 'file'"), std::string::npos);
+  EXPECT_NE(dem_error_of(path, o).find("field 'crs'"), std::string::npos);
+  EXPECT_NE(dem_error_of("/nonexistent/dem.tif", utm()).find("field 'file'"), std::string::npos);
   const std::string text = (std::filesystem::temp_directory_path() / "cullcheck_dem_text.tif").string();
   std::ofstream(text) << "not a raster\n";
-  EXPECT_NE(error_of(text, utm()).find("field 'file'"), std::string::npos);
+  EXPECT_NE(dem_error_of(text, utm()).find("field 'file'"), std::string::npos);
   const std::string empty = ascii_grid("nodata_only", {{-1, -1}, {-1, -1}}, 0, 0, 1, "-1");
-  EXPECT_NE(error_of(empty, utm()).find("no cell of the window has data"), std::string::npos);
+  EXPECT_NE(dem_error_of(empty, utm()).find("no cell of the window has data"), std::string::npos);
 }
 
 // WGS84: a = 6378137 m, f = 1/298.257223563.

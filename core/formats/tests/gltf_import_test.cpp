@@ -201,7 +201,7 @@ TEST(GltfImport, FiveMillionMetresSurviveRebased) {
 
 // ---- Bad files -------------------------------------------------------------------------------
 
-std::string field_of_error(const std::string& path) {
+std::string gltf_field_of_error(const std::string& path) {
   try {
     (void)read_gltf(path);
   } catch (const InputError& e) {
@@ -224,14 +224,14 @@ TEST(GltfImport, BadFilesNameTheField) {
     std::ifstream in(full, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     write_bytes(cut, bytes.substr(0, bytes.size() / 2));
-    EXPECT_EQ(field_of_error(cut), "glb header.length");
+    EXPECT_EQ(gltf_field_of_error(cut), "glb header.length");
     write_bytes(cut, bytes.substr(0, 10));
-    EXPECT_EQ(field_of_error(cut), "glb header");
+    EXPECT_EQ(gltf_field_of_error(cut), "glb header");
   }
   {  // bad JSON
     const std::string path = scratch_path("bad.gltf");
     write_bytes(path, R"({"asset": {"version": "2.0"}, "nodes": [)");
-    EXPECT_EQ(field_of_error(path), "(document)");
+    EXPECT_EQ(gltf_field_of_error(path), "(document)");
   }
   {  // NaN position
     GltfBuilder g;
@@ -239,7 +239,7 @@ TEST(GltfImport, BadFilesNameTheField) {
     g.scene({g.node("n", g.mesh("n", g.positions({{0, 0, 0}, {nan, 0, 0}, {0, 1, 0}})))});
     const std::string path = scratch_path("nan.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "accessors[0] (POSITION)[1]");
+    EXPECT_EQ(gltf_field_of_error(path), "accessors[0] (POSITION)[1]");
   }
   {  // index out of range
     GltfBuilder g;
@@ -247,7 +247,7 @@ TEST(GltfImport, BadFilesNameTheField) {
     g.scene({g.node("i", g.mesh("i", positions, g.indices({0, 1, 5})))});
     const std::string path = scratch_path("index.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "accessors[1] (indices)[2]");
+    EXPECT_EQ(gltf_field_of_error(path), "accessors[1] (indices)[2]");
   }
   {  // non-float positions (quantised)
     GltfBuilder g;
@@ -256,7 +256,7 @@ TEST(GltfImport, BadFilesNameTheField) {
     g.scene({g.node("q", g.mesh("q", acc))});
     const std::string path = scratch_path("quantised.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "accessors[0] (POSITION).componentType");
+    EXPECT_EQ(gltf_field_of_error(path), "accessors[0] (POSITION).componentType");
   }
   {  // accessor beyond its buffer view
     GltfBuilder g;
@@ -265,12 +265,12 @@ TEST(GltfImport, BadFilesNameTheField) {
     g.scene({g.node("a", g.mesh("a", acc))});
     const std::string path = scratch_path("overrun.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "accessors[0] (POSITION).count");
+    EXPECT_EQ(gltf_field_of_error(path), "accessors[0] (POSITION).count");
   }
   {  // a scene with nothing in it (by hand: tinygltf writes an empty scene as null)
     const std::string path = scratch_path("empty.gltf");
     write_bytes(path, R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"name":"nothing","nodes":[]}]})");
-    EXPECT_EQ(field_of_error(path), "(scene)");
+    EXPECT_EQ(gltf_field_of_error(path), "(scene)");
   }
   {  // a node cycle: A -> B -> A
     GltfBuilder g;
@@ -281,7 +281,7 @@ TEST(GltfImport, BadFilesNameTheField) {
     g.scene({a});
     const std::string path = scratch_path("cycle.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "children[0]");
+    EXPECT_EQ(gltf_field_of_error(path), "children[0]");
   }
   {  // a child that does not exist
     GltfBuilder g;
@@ -290,14 +290,14 @@ TEST(GltfImport, BadFilesNameTheField) {
     g.scene({a});
     const std::string path = scratch_path("orphan.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "children[0]");
+    EXPECT_EQ(gltf_field_of_error(path), "children[0]");
   }
   {  // only zero-area triangles
     GltfBuilder g;
     g.scene({g.node("z", g.mesh("z", g.positions({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}})))});
     const std::string path = scratch_path("degenerate.glb");
     g.write(path);
-    EXPECT_EQ(field_of_error(path), "triangles");
+    EXPECT_EQ(gltf_field_of_error(path), "triangles");
   }
 }
 

@@ -69,7 +69,7 @@ TEST(ObjImport, FiveMillionMetresSurviveRebased) {
   EXPECT_NEAR(back.meshes[0].vertices[1].x, s.meshes[0].vertices[1].x, 1e-5);
 }
 
-std::string field_of_error(const std::string& path) {
+std::string obj_field_of_error(const std::string& path) {
   try {
     (void)read_obj(path);
   } catch (const InputError& e) {
@@ -80,15 +80,15 @@ std::string field_of_error(const std::string& path) {
 }
 
 TEST(ObjImport, BadFilesNameTheField) {
-  EXPECT_EQ(field_of_error(write_obj_text("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n")), "line 2 (v)");
-  EXPECT_EQ(field_of_error(write_obj_text("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n")), "line 2 (v)");
-  EXPECT_EQ(field_of_error(write_obj_text("short.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")), "line 1 (v)");
-  EXPECT_EQ(field_of_error(write_obj_text("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 9\n")), "f (face 1)");
-  EXPECT_EQ(field_of_error(write_obj_text("empty.obj", "# nothing\nv 0 0 0\n")), "(scene)");
-  EXPECT_EQ(field_of_error(write_obj_text("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\ng a\nf 1 2 3\n")), "triangles");
-  EXPECT_EQ(field_of_error(write_obj_text("clash.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng mesh_1\nf 1 2 3\ng 1\nf 1 3 2\n")),
+  EXPECT_EQ(obj_field_of_error(write_obj_text("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n")), "line 2 (v)");
+  EXPECT_EQ(obj_field_of_error(write_obj_text("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n")), "line 2 (v)");
+  EXPECT_EQ(obj_field_of_error(write_obj_text("short.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")), "line 1 (v)");
+  EXPECT_EQ(obj_field_of_error(write_obj_text("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 9\n")), "f (face 1)");
+  EXPECT_EQ(obj_field_of_error(write_obj_text("empty.obj", "# nothing\nv 0 0 0\n")), "(scene)");
+  EXPECT_EQ(obj_field_of_error(write_obj_text("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\ng a\nf 1 2 3\n")), "triangles");
+  EXPECT_EQ(obj_field_of_error(write_obj_text("clash.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng mesh_1\nf 1 2 3\ng 1\nf 1 3 2\n")),
             "name");
-  EXPECT_EQ(field_of_error(scratch_path("missing.obj")), "(file)");
+  EXPECT_EQ(obj_field_of_error(scratch_path("missing.obj")), "(file)");
 }
 
 }  // namespace
