@@ -38,6 +38,18 @@ struct CullStatistics {
   double protocol_ms = 0.0;             // outside subjects: time in the protocol (serialising, pipes, parsing)
 };
 
+// Adds one query's counts (not its times) to a total: a run's frames, a view cell's samples.
+inline void add_counts(CullStatistics& totals, const CullStatistics& frame) {
+  totals.cells_tested += frame.cells_tested;
+  totals.buildings_tested += frame.buildings_tested;
+  totals.horizon_nodes += frame.horizon_nodes;
+  totals.occluders_applied += frame.occluders_applied;
+  totals.items_skipped += frame.items_skipped;
+  totals.guard_fires += frame.guard_fires;
+  totals.bound_tests += frame.bound_tests;
+  totals.exact_traversal_tests += frame.exact_traversal_tests;
+}
+
 struct CullResult {
   std::vector<ObjectId> pvs;  // sorted ascending, no duplicates
   CullStatistics stats;

@@ -12,18 +12,6 @@
 
 namespace cullcheck {
 
-// Adds a frame's counts (not its times) to a run's totals.
-inline void add_counts(CullStatistics& totals, const CullStatistics& frame) {
-  totals.cells_tested += frame.cells_tested;
-  totals.buildings_tested += frame.buildings_tested;
-  totals.horizon_nodes += frame.horizon_nodes;
-  totals.occluders_applied += frame.occluders_applied;
-  totals.items_skipped += frame.items_skipped;
-  totals.guard_fires += frame.guard_fires;
-  totals.bound_tests += frame.bound_tests;
-  totals.exact_traversal_tests += frame.exact_traversal_tests;
-}
-
 // For a method that sweeps a quadtree, sets `result.stats.exact_traversal_tests` to the bound for
 // its PVS; call it after the query, outside its timing. `counter` lives across frames and is
 // rebuilt when the method's quadtree changes (a scene timeline's new frame).

@@ -47,10 +47,8 @@ std::vector<ObjectId> PassiveTargets::visible(const ViewRegion& region, const st
         return unknown_before_[cells[i].last] == unknown_before_[cells[i].first];
       },
       pending, result);
-  stats.cells_tested += result.stats.cells_tested;
-  stats.buildings_tested += result.stats.buildings_tested;
-  stats.horizon_nodes += result.stats.horizon_nodes;
-  stats.items_skipped += result.stats.items_skipped;
+  result.stats.occluders_applied = 0;  // the replayed shadows: the building sweep counted them
+  add_counts(stats, result.stats);
   std::sort(result.pvs.begin(), result.pvs.end());
   return result.pvs;
 }

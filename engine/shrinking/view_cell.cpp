@@ -137,12 +137,7 @@ ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSa
                                std::to_string(passive_targets_) + " the view cell was told of");
       known_passive_[id] = 1;
     }
-    const CullStatistics& s2 = r.stats;
-    out.stats.cells_tested += s2.cells_tested;
-    out.stats.buildings_tested += s2.buildings_tested;
-    out.stats.horizon_nodes += s2.horizon_nodes;
-    out.stats.occluders_applied += s2.occluders_applied;
-    out.stats.items_skipped += s2.items_skipped;
+    add_counts(out.stats, r.stats);
   }
   for (std::uint32_t b = 0; b < scene_.buildings.size(); ++b)
     if (known[b]) out.pvs.push_back(scene_.buildings[b].id);
