@@ -219,7 +219,11 @@ CullResult ImageSpaceHorizonCulling::cull(const Camera& camera) {
       const Quadtree::Cell& cell = cells[index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!volume.may_intersect(box) || hidden(cell.bounds, cell.max_height)) continue;
+      // Both boxes of the cell's height split (Quadtree::Cell), as OH(OS)'s cell_hidden: every
+      // building lies in one of them, and each is as sharp a proof as the one box.
+      if (!volume.may_intersect(box) ||
+          (hidden(cell.tall_bounds, cell.max_height) && (!cell.has_rest() || hidden(cell.bounds, cell.rest_height))))
+        continue;
       if (cell.leaf()) {
         for (std::uint32_t i = cell.first; i < cell.last; ++i)
           sweep.emplace(min_distance(e, scene_.buildings[order[i]].bounds.plan()), true, order[i]);
