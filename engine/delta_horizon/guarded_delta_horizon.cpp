@@ -16,9 +16,7 @@ GuardedDeltaHorizonCulling::GuardedDeltaHorizonCulling(const Scene& scene, const
       first_(scene, quadtree_, options.horizon_bins),
       second_(scene, quadtree_, options.horizon_bins) {}
 
-GuardedDeltaHorizonCulling::~GuardedDeltaHorizonCulling() {
-  if (next_.valid()) next_.wait();
-}
+GuardedDeltaHorizonCulling::~GuardedDeltaHorizonCulling() = default;
 
 CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   const auto start = std::chrono::steady_clock::now();
@@ -39,12 +37,13 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       }
     }
     bool prefetched = false;
-    if (next_.valid()) {
-      next_.get();  // rethrows what the thread threw
+    if (prefetch_.pending()) {
+      prefetch_.wait();  // rethrows what the thread threw
       if (next_region_->contains(camera)) {
         std::swap(current_, spare_);
         region_ = *next_region_;
         stats = next_stats_;
+        order_.swap(next_order_);  // sorted from the region's centre: nearly sorted from here
         prefetched = true;
         ++prefetch_hits_;
       }
@@ -52,10 +51,10 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     if (!prefetched) {
       region_ = MotionRegion{anchor, options_.delta_radius, options_.delta_height, options_.delta_turn};
       current_->certify(*region_, stats);
+      order_.clear();
+      for (std::uint32_t b : current_->swept()) order_.push_back({0.0, b});
     }
     stats.guard_fires = 1;
-    order_.clear();
-    for (std::uint32_t b : current_->swept()) order_.push_back({0.0, b});
     // Next: where re-anchoring on a straight walk would put the region, 1.9 ε on from this one's
     // centre (the eye leaves this disc about ε ahead of the centre and anchors 0.9 ε beyond).
     if (options_.delta_prefetch && (direction.x != 0.0 || direction.y != 0.0)) {
@@ -64,7 +63,14 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       next.position = {on.x, on.y, camera.position.z};
       next_region_ = MotionRegion{next, options_.delta_radius, options_.delta_height, options_.delta_turn};
       next_stats_ = CullStatistics{};
-      next_ = std::async(std::launch::async, [this] { spare_->certify(*next_region_, next_stats_); });
+      prefetch_.start([this] {
+        spare_->certify(*next_region_, next_stats_);
+        const Vec2 centre = plan(next_region_->anchor.position);
+        next_order_.clear();
+        for (std::uint32_t b : spare_->swept())
+          next_order_.push_back({min_distance(centre, scene_.buildings[b].bounds.plan()), b});
+        std::sort(next_order_.begin(), next_order_.end());
+      });
     }
   }
   const ViewVolume volume(camera);
@@ -72,7 +78,9 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   const Vec2 e = plan(eye);
   const double unclipped = unclipped_distance(camera);
 
-  // The swept buildings front to back (from the last frame's order, so nearly sorted).
+  // The swept buildings front to back (from the last frame's order, or the prefetched region's
+  // centre, so nearly sorted). (distance, index) pairs are totally ordered, so the order does not
+  // depend on where the sort started.
   for (auto& [distance, b] : order_) distance = min_distance(e, scene_.buildings[b].bounds.plan());
   std::sort(order_.begin(), order_.end());
 

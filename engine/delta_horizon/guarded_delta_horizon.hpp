@@ -16,9 +16,10 @@
 //    the guard fires, and the frame costs a certificate sweep on top of its own.
 // Prefetch (MethodOptions::delta_prefetch, issue 17): right after re-anchoring, a second thread
 // certifies the region the walk will need next (centred 1.9 ε further along the last step,
-// where re-anchoring on a straight walk would put it). When the guard fires and that region holds
-// the camera, the frame takes it instead of certifying on the critical path; otherwise it waits
-// for the thread and certifies as before. Which certificate is used depends only on the camera
+// where re-anchoring on a straight walk would put it), and sorts its swept buildings by distance
+// from that region's centre. When the guard fires and that region holds the camera, the frame
+// takes both instead of certifying and sorting from scratch on the critical path; otherwise it
+// waits for the thread and certifies as before. The thread is started once (BackgroundTask). Which certificate is used depends only on the camera
 // path, never on timing, so statistics are as deterministic as the PVS, which is OH(OS)'s
 // either way. The certificate's work is counted in the frame that takes it (cells, buildings,
 // horizon entries), and its wall time on the other core is not in cull_ms.
@@ -28,9 +29,11 @@
 // re-anchoring.
 #pragma once
 
-#include <future>
 #include <optional>
+#include <utility>
+#include <vector>
 
+#include "core/background_task.hpp"
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/method.hpp"
@@ -68,10 +71,12 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
   std::optional<MotionRegion> next_region_;
   CullStatistics next_stats_;
   std::uint64_t prefetch_hits_ = 0;
-  std::future<void> next_;  // certifies next_region_ into *spare_ (declared last: joined first)
   std::optional<Camera> last_camera_;
   std::vector<std::uint32_t> last_pvs_;  // scene indices
-  std::vector<std::pair<double, std::uint32_t>> order_;  // swept buildings by distance
+  std::vector<std::pair<double, std::uint32_t>> order_;       // swept buildings by distance
+  std::vector<std::pair<double, std::uint32_t>> next_order_;  // *spare_'s, from next_region_'s centre
+  // Certifies next_region_ into *spare_ and sorts next_order_ (declared last: joined first).
+  BackgroundTask prefetch_;
 };
 
 }  // namespace cullcheck
