@@ -18,15 +18,16 @@ BackgroundTask::~BackgroundTask() {
 
 void BackgroundTask::start(std::function<void()> task) {
   if (pending_) throw std::logic_error("BackgroundTask::start: the last task was not waited for");
+  // First, so that a thread that cannot be started (std::system_error) leaves nothing pending.
+  if (!thread_.joinable()) thread_ = std::thread([this] { loop(); });
   {
     const std::lock_guard lock(mutex_);
     task_ = std::move(task);
     error_ = nullptr;
     running_ = true;
   }
+  wake_.notify_one();
   pending_ = true;
-  if (!thread_.joinable()) thread_ = std::thread([this] { loop(); });
-  else wake_.notify_one();
 }
 
 void BackgroundTask::wait() {
