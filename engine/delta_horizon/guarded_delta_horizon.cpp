@@ -6,6 +6,17 @@
 #include "engine/horizon/horizon_sweep.hpp"
 
 namespace cullcheck {
+namespace {
+
+// Swept buildings front to back from `from`. (distance, index) pairs are totally ordered, so the
+// order does not depend on the order the sort starts from (the last frame's, or the prefetched
+// region's centre's: nearly sorted either way).
+void sort_by_distance(std::vector<std::pair<double, std::uint32_t>>& order, const Scene& scene, Vec2 from) {
+  for (auto& [distance, b] : order) distance = min_distance(from, scene.buildings[b].bounds.plan());
+  std::sort(order.begin(), order.end());
+}
+
+}  // namespace
 
 GuardedDeltaHorizonCulling::GuardedDeltaHorizonCulling(const Scene& scene, const MethodOptions& options)
     : scene_(scene),
@@ -65,11 +76,9 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       next_stats_ = CullStatistics{};
       prefetch_.start([this] {
         spare_->certify(*next_region_, next_stats_);
-        const Vec2 centre = plan(next_region_->anchor.position);
         next_order_.clear();
-        for (std::uint32_t b : spare_->swept())
-          next_order_.push_back({min_distance(centre, scene_.buildings[b].bounds.plan()), b});
-        std::sort(next_order_.begin(), next_order_.end());
+        for (std::uint32_t b : spare_->swept()) next_order_.push_back({0.0, b});
+        sort_by_distance(next_order_, scene_, plan(next_region_->anchor.position));
       });
     }
   }
@@ -78,11 +87,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   const Vec2 e = plan(eye);
   const double unclipped = unclipped_distance(camera);
 
-  // The swept buildings front to back (from the last frame's order, or the prefetched region's
-  // centre, so nearly sorted). (distance, index) pairs are totally ordered, so the order does not
-  // depend on where the sort started.
-  for (auto& [distance, b] : order_) distance = min_distance(e, scene_.buildings[b].bounds.plan());
-  std::sort(order_.begin(), order_.end());
+  sort_by_distance(order_, scene_, e);
 
   horizon_.reset();
   horizon_.restrict_to(azimuth_coverage(camera));

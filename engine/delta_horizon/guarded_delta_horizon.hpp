@@ -19,9 +19,9 @@
 // where re-anchoring on a straight walk would put it), and sorts its swept buildings by distance
 // from that region's centre. When the guard fires and that region holds the camera, the frame
 // takes both instead of certifying and sorting from scratch on the critical path; otherwise it
-// waits for the thread and certifies as before. The thread is started once (BackgroundTask). Which certificate is used depends only on the camera
-// path, never on timing, so statistics are as deterministic as the PVS, which is OH(OS)'s
-// either way. The certificate's work is counted in the frame that takes it (cells, buildings,
+// waits for the thread and certifies as before. The thread is started once (BackgroundTask).
+// Which certificate is used depends only on the camera path, never on timing, so statistics are
+// as deterministic as the PVS, which is OH(OS)'s either way. The certificate's work is counted in the frame that takes it (cells, buildings,
 // horizon entries), and its wall time on the other core is not in cull_ms.
 // horizon() materialises the horizon OH(OS) would leave (every visible building's shadows) on
 // demand; the per-frame sweep only builds it where uncertain buildings need it.
