@@ -1,6 +1,7 @@
 #include "engine/delta_horizon/guarded_delta_horizon.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 
 #include "engine/horizon/horizon_sweep.hpp"
@@ -11,9 +12,30 @@ namespace {
 // Swept buildings front to back from `from`. (distance, index) pairs are totally ordered, so the
 // order does not depend on the order the sort starts from (the last frame's, or the prefetched
 // region's centre's: nearly sorted either way).
-void sort_by_distance(std::vector<std::pair<double, std::uint32_t>>& order, const Scene& scene, Vec2 from) {
-  for (auto& [distance, b] : order) distance = min_distance(from, scene.buildings[b].bounds.plan());
+template <class Swept>
+void sort_by_distance(std::vector<Swept>& order, const Scene& scene, Vec2 from) {
+  for (Swept& s : order) s.distance = min_distance(from, scene.buildings[s.building].bounds.plan());
   std::sort(order.begin(), order.end());
+}
+
+// The certificate's swept buildings, each with the vertices fixed over the region's disc (its
+// box's corners, then each CVP's ring). The disc is widened by 1e-9 of its radius so that an eye
+// MotionRegion::contains admits within rounding is inside it.
+template <class Swept>
+void fix_vertices(const RegionCertificate& certificate, const MotionRegion& region, const Scene& scene,
+                  std::vector<Swept>& order, std::vector<DiscVertices>& vertices) {
+  order.clear();
+  vertices.clear();
+  const Vec2 centre = plan(region.anchor.position);
+  const double radius = region.radius * (1.0 + 1e-9);
+  for (std::uint32_t b : certificate.swept()) {
+    const Building& building = scene.buildings[b];
+    order.push_back({0.0, b, static_cast<std::uint32_t>(vertices.size())});
+    const std::array<Vec2, 4> corners = box_corners(building.bounds.plan());
+    vertices.push_back(disc_vertices(corners.data(), corners.size(), centre, radius));
+    for (const ConvexVerticalPrism& prism : building.prisms)
+      vertices.push_back(disc_vertices(prism.ring.data(), prism.ring.size(), centre, radius));
+  }
 }
 
 }  // namespace
@@ -55,6 +77,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
         region_ = *next_region_;
         stats = next_stats_;
         order_.swap(next_order_);  // sorted from the region's centre: nearly sorted from here
+        vertices_.swap(next_vertices_);
         prefetched = true;
         ++prefetch_hits_;
       }
@@ -62,8 +85,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     if (!prefetched) {
       region_ = MotionRegion{anchor, options_.delta_radius, options_.delta_height, options_.delta_turn};
       current_->certify(*region_, stats);
-      order_.clear();
-      for (std::uint32_t b : current_->swept()) order_.push_back({0.0, b});
+      fix_vertices(*current_, *region_, scene_, order_, vertices_);
     }
     stats.guard_fires = 1;
     // Next: where re-anchoring on a straight walk would put the region, 1.9 ε on from this one's
@@ -76,8 +98,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       next_stats_ = CullStatistics{};
       prefetch_.start([this] {
         spare_->certify(*next_region_, next_stats_);
-        next_order_.clear();
-        for (std::uint32_t b : spare_->swept()) next_order_.push_back({0.0, b});
+        fix_vertices(*spare_, *next_region_, scene_, next_order_, next_vertices_);
         sort_by_distance(next_order_, scene_, plan(next_region_->anchor.position));
       });
     }
@@ -95,20 +116,41 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   ShadowQueue pending;
   std::vector<std::optional<ConvexSpan>> spans;
   std::vector<std::uint32_t> found;  // uncertain buildings found visible
-  for (const auto& [distance, b] : order_) {
-    pending.merge_nearer_than(distance, horizon_, stats);
+  for (const Swept& swept : order_) {
+    pending.merge_nearer_than(swept.distance, horizon_, stats);
+    const std::uint32_t b = swept.building;
     const Building& building = scene_.buildings[b];
+    const DiscVertices* fixed = vertices_.data() + swept.vertices;
+    auto span_of = [&](std::size_t p) {
+      const std::vector<Vec2>& ring = building.prisms[p].ring;
+      return fixed[1 + p].tangents_fixed() ? span_from_tangents(ring.data(), ring.size(), fixed[1 + p], e)
+                                           : convex_span(ring, e);
+    };
+    auto farthest_of = [&](std::size_t p) {
+      const std::vector<Vec2>& ring = building.prisms[p].ring;
+      return fixed[1 + p].farthest_fixed() ? distance_to_vertex(ring.data(), fixed[1 + p], e) : max_vertex_distance(ring, e);
+    };
+    auto nearest_of = [&](std::size_t p) {
+      const std::vector<Vec2>& ring = building.prisms[p].ring;
+      return fixed[1 + p].nearest_fixed() ? distance_to_edge(ring.data(), ring.size(), fixed[1 + p], e)
+                                          : min_boundary_distance(ring, e);
+    };
     if (current_->certainly_visible(b)) {
       spans.clear();
-      for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
+      for (std::size_t p = 0; p < building.prisms.size(); ++p) spans.push_back(span_of(p));
     } else {
       ++stats.buildings_tested;
-      if (!volume.may_intersect(building.bounds) || box_hidden(horizon_, building.bounds.plan(), building.height, eye) ||
-          !prisms_visible(horizon_, building, eye, spans))
+      if (!volume.may_intersect(building.bounds)) continue;
+      const Box2 box = building.bounds.plan();
+      const std::array<Vec2, 4> corners = box_corners(box);
+      const auto box_view = fixed[0].tangents_fixed() ? span_from_tangents(corners.data(), corners.size(), fixed[0], e)
+                                                      : box_span(box, e);
+      if (box_hidden(horizon_, box_view, box, building.height, eye) ||
+          !prisms_visible(horizon_, building, eye, spans, span_of, nearest_of, farthest_of))
         continue;
       found.push_back(b);
     }
-    queue_shadows(pending, ShadowRule::conservative, building, eye, distance, unclipped, spans);
+    queue_shadows(pending, ShadowRule::conservative, building, eye, swept.distance, unclipped, spans, farthest_of);
   }
   stats.horizon_nodes += horizon_.take_node_visits();
   stats.items_skipped = current_->visible().size() + current_->hidden_count();

@@ -21,8 +21,13 @@
 // takes both instead of certifying and sorting from scratch on the critical path; otherwise it
 // waits for the thread and certifies as before. The thread is started once (BackgroundTask).
 // Which certificate is used depends only on the camera path, never on timing, so statistics are
-// as deterministic as the PVS, which is OH(OS)'s either way. The certificate's work is counted in the frame that takes it (cells, buildings,
-// horizon entries), and its wall time on the other core is not in cull_ms.
+// as deterministic as the PVS, which is OH(OS)'s either way. The certificate's work is counted
+// in the frame that takes it (cells, buildings, horizon entries), and its wall time on the other
+// core is not in cull_ms.
+// Fixed vertices (issue 17): with each certificate, the swept buildings' tangent and farthest
+// vertices are found for the whole region where they provably do not change in it
+// (disc_vertices), so a frame reads two vertices and one for a span and a farthest distance
+// instead of walking every ring; the values are OH(OS)'s bit for bit.
 // horizon() materialises the horizon OH(OS) would leave (every visible building's shadows) on
 // demand; the per-frame sweep only builds it where uncertain buildings need it.
 // Statistics: items_skipped counts buildings decided without a test; guard_fires is 1 on
@@ -36,6 +41,7 @@
 #include "core/background_task.hpp"
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/horizon/polar_geometry.hpp"
 #include "engine/method.hpp"
 #include "engine/spatial/quadtree.hpp"
 
@@ -73,8 +79,18 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
   std::uint64_t prefetch_hits_ = 0;
   std::optional<Camera> last_camera_;
   std::vector<std::uint32_t> last_pvs_;  // scene indices
-  std::vector<std::pair<double, std::uint32_t>> order_;       // swept buildings by distance
-  std::vector<std::pair<double, std::uint32_t>> next_order_;  // *spare_'s, from next_region_'s centre
+  // A swept building, its distance from the eye (the order of the sweep), and where its
+  // vertices fixed for the region start in `vertices_`: [0] its box's corners, [1 + p] CVP p.
+  struct Swept {
+    double distance;
+    std::uint32_t building;
+    std::uint32_t vertices;
+    bool operator<(const Swept& o) const { return distance != o.distance ? distance < o.distance : building < o.building; }
+  };
+  std::vector<Swept> order_;                // swept buildings by distance
+  std::vector<DiscVertices> vertices_;      // fixed over *region_ (polar_geometry.hpp)
+  std::vector<Swept> next_order_;           // *spare_'s, from next_region_'s centre
+  std::vector<DiscVertices> next_vertices_;  // fixed over *next_region_
   // Certifies next_region_ into *spare_ and sorts next_order_ (declared last: joined first).
   BackgroundTask prefetch_;
 };

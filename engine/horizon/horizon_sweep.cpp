@@ -9,9 +9,8 @@ double shadow_slope(ShadowRule rule, const ConvexVerticalPrism& prism, Vec3 eye,
   const Vec2 e = plan(eye);
   const double rise = prism.height - eye.z;
   if (rule == ShadowRule::thesis || rise >= 0.0) {
-    const double d1 = length(prism.ring[span.first_tangent] - e);
-    const double d2 = length(prism.ring[span.last_tangent] - e);
-    return std::min(rise / d1, rise / d2);
+    // length(ring[tangent] - e), as convex_span measured it.
+    return std::min(rise / span.first_distance, rise / span.last_distance);
   }
   return rise / min_far_chain_distance(prism.ring, e);
 }

@@ -126,11 +126,15 @@ struct SweepItem {
 // OH(OS)'s tests, shared by every sweep that uses them:
 // a box (cell or building bounds, standing on the ground up to `top`) is hidden when its highest
 // slope lies below the horizon over its azimuth span; a box that contains the eye is not.
-inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, Vec3 eye) {
-  const Vec2 e = plan(eye);
-  const auto span = box_span(box, e);
+// `span` is box_span(box, plan(eye)), however the caller found it.
+inline bool box_hidden(OcclusionHorizon& horizon, const std::optional<ConvexSpan>& span, const Box2& box, double top,
+                       Vec3 eye) {
   if (!span) return false;
+  const Vec2 e = plan(eye);
   return horizon.hides(span->span, max_slope(top, eye.z, min_distance(e, box), max_distance(e, box)));
+}
+inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, Vec3 eye) {
+  return box_hidden(horizon, box_span(box, plan(eye)), box, top, eye);
 }
 // A quadtree cell is hidden when both boxes of its height split are (Quadtree::Cell): its tall
 // buildings' box up to the tallest, and the whole cell up to the others' height. Sharper than
@@ -141,19 +145,30 @@ inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, V
 }
 // A building whose box is not hidden is visible unless every CVP is hidden; `spans` receives
 // each CVP's span for its shadows.
+// `span_of(p)`, `nearest_of(p)` and `farthest_of(p)` are convex_span, min_boundary_distance and
+// max_vertex_distance of CVP p from the eye, however the caller finds them (the guarded ΔH reads
+// them off vertices fixed for its region).
+template <class SpanOf, class NearestOf, class FarthestOf>
+bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
+                    std::vector<std::optional<ConvexSpan>>& spans, const SpanOf& span_of, const NearestOf& nearest_of,
+                    const FarthestOf& farthest_of) {
+  spans.clear();
+  bool visible = false;
+  for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+    spans.push_back(span_of(p));
+    const auto& span = spans.back();
+    visible = visible || !span ||
+              !horizon.hides(span->span, max_slope(building.prisms[p].height, eye.z, nearest_of(p), farthest_of(p)));
+  }
+  return visible;
+}
 inline bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
                            std::vector<std::optional<ConvexSpan>>& spans) {
   const Vec2 e = plan(eye);
-  spans.clear();
-  bool visible = false;
-  for (const ConvexVerticalPrism& prism : building.prisms) {
-    spans.push_back(convex_span(prism.ring, e));
-    const auto& span = spans.back();
-    visible = visible || !span ||
-              !horizon.hides(span->span, max_slope(prism.height, eye.z, min_boundary_distance(prism.ring, e),
-                                                   max_vertex_distance(prism.ring, e)));
-  }
-  return visible;
+  return prisms_visible(
+      horizon, building, eye, spans, [&](std::size_t p) { return convex_span(building.prisms[p].ring, e); },
+      [&](std::size_t p) { return min_boundary_distance(building.prisms[p].ring, e); },
+      [&](std::size_t p) { return max_vertex_distance(building.prisms[p].ring, e); });
 }
 // Whether a shadow computed from geometry may be merged: a NaN or infinite slope (or distance)
 // comes from degenerate input (overflowing coordinates, a zero distance) and must hide nothing.
@@ -162,16 +177,24 @@ inline bool usable_shadow(double farthest, double slope) { return std::isfinite(
 // Queues a visible building's shadows. `distance` is its nearest plan distance; a CVP that may
 // reach in front of the near plane, or that holds the eye (no span), casts none; nor does one
 // whose shadow is not usable_shadow.
-inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
-                          double unclipped, const std::vector<std::optional<ConvexSpan>>& spans) {
+// `farthest_of(p)` is max_vertex_distance of CVP p from the eye, however the caller finds it.
+template <class FarthestOf>
+void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
+                   double unclipped, const std::vector<std::optional<ConvexSpan>>& spans, const FarthestOf& farthest_of) {
   const Vec2 e = plan(eye);
   const bool may_be_clipped = distance < unclipped;
   for (std::size_t p = 0; p < building.prisms.size(); ++p) {
     const ConvexVerticalPrism& prism = building.prisms[p];
     if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-    const double farthest = max_vertex_distance(prism.ring, e), slope = shadow_slope(rule, prism, eye, *spans[p]);
+    const double farthest = farthest_of(p), slope = shadow_slope(rule, prism, eye, *spans[p]);
     if (usable_shadow(farthest, slope)) pending.push(farthest, spans[p]->span, slope);
   }
+}
+inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
+                          double unclipped, const std::vector<std::optional<ConvexSpan>>& spans) {
+  const Vec2 e = plan(eye);
+  queue_shadows(pending, rule, building, eye, distance, unclipped, spans,
+                [&](std::size_t p) { return max_vertex_distance(building.prisms[p].ring, e); });
 }
 
 // Runs one query into `result` (PVS unsorted, statistics without cull_ms). What varies between

@@ -5,6 +5,8 @@
 // rounds the span to bins.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -20,10 +22,44 @@ struct ConvexSpan {
   AzimuthSpan span;
   std::size_t first_tangent = 0;  // vertex at span.begin
   std::size_t last_tangent = 0;   // vertex at span.end
+  // Plan distances from the eye to the tangent vertices (length(ring[tangent] - eye)); 0 for a
+  // span of directions.
+  double first_distance = 0.0, last_distance = 0.0;
 };
 std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye);
 std::optional<ConvexSpan> convex_span(const Vec2* ring, std::size_t n, Vec2 eye);
 std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye);
+// A box's corners counter-clockwise from its low corner: the ring box_span takes.
+inline std::array<Vec2, 4> box_corners(const Box2& box) {
+  return {box.lo, Vec2{box.hi.x, box.lo.y}, box.hi, Vec2{box.lo.x, box.hi.y}};
+}
+
+// The vertices convex_span (its two tangents) and max_vertex_distance (the farthest) pick, and
+// the edges among which min_boundary_distance finds the nearest, for every eye within `radius`
+// of `centre`, where that is provably the same for all of them, with a margin far above
+// rounding; kNoVertex where it is not (an eye near the ring, tangents or farthest vertices that
+// change within the disc, collinear vertices). Meant for a region of eyes queried many times
+// (the guarded ΔH's motion region): from an eye of the disc, span_from_tangents,
+// distance_to_vertex and distance_to_edge give convex_span's, max_vertex_distance's and
+// min_boundary_distance's results bit for bit, reading two vertices, one, and a few edges
+// instead of the whole ring.
+inline constexpr std::uint32_t kNoVertex = 0xFFFFFFFFu;
+struct DiscVertices {
+  std::uint32_t first_tangent = kNoVertex, last_tangent = kNoVertex, farthest = kNoVertex;
+  // Edges near_first, near_first + 1, ... (near_count of them, cyclically; edge i runs from
+  // vertex i - 1 to vertex i): every other edge is farther from every eye of the disc.
+  std::uint32_t near_first = kNoVertex, near_count = 0;
+  bool tangents_fixed() const { return first_tangent != kNoVertex; }
+  bool farthest_fixed() const { return farthest != kNoVertex; }
+  bool nearest_fixed() const { return near_first != kNoVertex; }
+};
+DiscVertices disc_vertices(const Vec2* ring, std::size_t n, Vec2 centre, double radius);
+// Only with tangents_fixed(), from an eye of its disc.
+std::optional<ConvexSpan> span_from_tangents(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye);
+// Only with farthest_fixed(), from an eye of its disc.
+double distance_to_vertex(const Vec2* ring, const DiscVertices& v, Vec2 eye);
+// Only with nearest_fixed(), from an eye of its disc.
+double distance_to_edge(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye);
 
 double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye);
 // Distance from the eye to the polygon's boundary (eye outside).
