@@ -25,7 +25,7 @@ rainier=../shared/data/real/dem_mt_rainier/mt_rainier_90m.tif
   --vbaoi --subject build/examples/subjects/builtin_subject \
   --fuzz-subject build/examples/subjects/buggy_sphere_subject --fuzz-budget 200 --fuzz-seed 1 --soak-budget 2000 \
   --region-sweep 0.5,1,1.41,2,4 --knob-sweep horizon_bins=1024,4096,16384 --knob-sweep quadtree_leaf_size=2,8,32 \
-  --knob-sweep delta_radius=0.25,0.5,1 --radar-table "${radar_dem[@]}" --polar-table --slice-table --slice-frames 300 --slice-oracle-cells 2 \
+  --knob-sweep delta_radius=0.05,0.25,0.5 --radar-table "${radar_dem[@]}" --polar-table --slice-table --slice-frames 300 --slice-oracle-cells 2 \
   --oracle-stride 1 --output report.json --html report.html
 # The page's screenshot beside it (headless Chromium; the browser test keeps one of a short run too).
 chromium --headless --no-sandbox --disable-gpu --disable-dev-shm-usage --hide-scrollbars --window-size=1280,2400 \

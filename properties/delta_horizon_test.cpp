@@ -293,9 +293,18 @@ TEST(GuardedDeltaHorizon, PrefetchedCertificatesAnswerReanchoringWithTheSamePvs)
   ObjectSpaceHorizonCulling full(scene, ShadowRule::conservative, options);
   GuardedDeltaHorizonCulling ahead(scene, options), again(scene, options), inline_only(scene, inline_options);
   std::uint64_t fires = 0, inline_fires = 0;
+  std::size_t background_frames = 0;  // frames charged with the prefetch thread's time
   for (std::size_t f = 0; f < c.path.frames.size(); ++f) {
     const Camera& camera = c.path.frames[f];
     const CullResult reference = full.cull(camera), a = ahead.cull(camera), b = again.cull(camera), i = inline_only.cull(camera);
+    // The thread's time goes to a frame that re-anchors (and waited for it), and to no other;
+    // without the prefetch, and for OH(OS), there is none.
+    if (a.stats.background_ms > 0.0) {
+      ++background_frames;
+      ASSERT_EQ(a.stats.guard_fires, 1u) << "frame " << f << " charged with background time without re-anchoring";
+    }
+    ASSERT_EQ(i.stats.background_ms, 0.0) << "frame " << f;
+    ASSERT_EQ(reference.stats.background_ms, 0.0) << "frame " << f;
     ASSERT_EQ(a.pvs, reference.pvs) << "frame " << f << "; replay: " << replay_of(generators::SceneSpec{}, c, "delta_h_guarded");
     ASSERT_EQ(i.pvs, reference.pvs) << "frame " << f;
     ASSERT_EQ(a.stats.buildings_tested, b.stats.buildings_tested) << "frame " << f;
@@ -312,6 +321,9 @@ TEST(GuardedDeltaHorizon, PrefetchedCertificatesAnswerReanchoringWithTheSamePvs)
   EXPECT_EQ(fires, 10u) << "guard fires with prefetch";
   EXPECT_EQ(inline_fires, 9u) << "guard fires without";
   EXPECT_EQ(ahead.prefetch_hits(), 7u) << "re-anchorings answered by the prefetched region";
+  // Every re-anchoring but the first two has a prefetched region to take or throw away: the
+  // first knows no direction of walk, so the thread first runs after the second.
+  EXPECT_EQ(background_frames, fires - 2) << "frames charged with the prefetch thread's time";
 }
 
 }  // namespace

@@ -169,6 +169,7 @@ nlohmann::json report_results(const ReportInputs& in, nlohmann::json report) {
                     {"cull_ms_median", median(r.cull_ms)},
                     {"cull_ms_p95", percentile(r.cull_ms, 95)},
                     {"cull_ms_mean", mean(r.cull_ms)},
+                    {"background_ms_mean", mean(r.background_ms)},
                     {"pvs_mean", mean(r.pvs_size)},
                     {"pvs_mean_checked_frames", pvs_checked},
                     {"witnessed_mean", witnessed},

@@ -19,7 +19,8 @@ struct ScalingOptions {
 };
 
 // One row per city size: {"grid", "buildings", "frames", "methods": [{method, cull_ms_median,
-// cull_ms_p95, pvs_mean, cells_tested_mean, buildings_tested_mean, horizon_nodes_mean,
+// cull_ms_p95, background_ms_mean (work done ahead on another thread, not in cull_ms: the guarded
+// ΔH's prefetch), pvs_mean, cells_tested_mean, buildings_tested_mean, horizon_nodes_mean,
 // tests_over_exact_traversal (methods that sweep a quadtree, else null), ns_per_test,
 // frames_pvs_differs_from_oh_os, oh_os_cull_ms_median_ratio}]}.
 nlohmann::json run_scaling(const ScalingOptions& options);

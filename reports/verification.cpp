@@ -299,6 +299,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       run.cull_ms.push_back(s.cull_ms);
       run.answered_frames.push_back(index);
       run.protocol_ms.push_back(s.protocol_ms);
+      run.background_ms.push_back(s.background_ms);
       run.pvs_size.push_back(static_cast<double>(results[m]->pvs.size()));
       add_counts(run.totals, s);
       if (run.outside)

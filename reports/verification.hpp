@@ -139,6 +139,7 @@ struct MethodRun {
   std::size_t frames_skipped = 0;
   std::string skip_reason;
   std::vector<double> protocol_ms;  // every frame (outside subjects: time in the protocol)
+  std::vector<double> background_ms;  // every frame (CullStatistics::background_ms)
   // Outside subjects: frames whose PVS equals each built-in method's, by method name.
   std::vector<std::pair<std::string, std::size_t>> frames_equal_to;
   // The pixel oracle (VerificationOptions::pixels), over checked frames.

@@ -169,6 +169,7 @@ json run_json(const MethodRun& r) {
             {"frames_skipped", r.frames_skipped},
             {"skip_reason", r.skip_reason},
             {"protocol_ms", r.protocol_ms},
+            {"background_ms", r.background_ms},
             {"frames_equal_to", r.frames_equal_to},
             {"misdrawn_pixels", r.misdrawn_pixels},
             {"blob_per_frame", r.blob_per_frame},
@@ -206,6 +207,7 @@ MethodRun run_from(const json& j, const std::string& what) {
   m.frames_skipped = r.get<std::size_t>("frames_skipped");
   m.skip_reason = r.get<std::string>("skip_reason");
   m.protocol_ms = r.get<std::vector<double>>("protocol_ms");
+  m.background_ms = j.value("background_ms", std::vector<double>{});  // absent before issue 17's prefetch figures
   m.frames_equal_to = r.get<std::vector<std::pair<std::string, std::size_t>>>("frames_equal_to");
   m.misdrawn_pixels = r.get<std::vector<double>>("misdrawn_pixels");
   m.blob_per_frame = r.get<std::vector<std::uint64_t>>("blob_per_frame");

@@ -4,26 +4,45 @@
 #include <array>
 #include <chrono>
 
+#include "core/elapsed.hpp"
 #include "engine/horizon/horizon_sweep.hpp"
 
 namespace cullcheck {
 namespace {
 
 // Swept buildings front to back from `from`. (distance, index) pairs are totally ordered, so the
-// order does not depend on the order the sort starts from (the last frame's, or the prefetched
-// region's centre's: nearly sorted either way).
+// order does not depend on the order the sort starts from (the last frame's, the certificate's
+// sweep from the anchor, or the prefetched region's centre's: nearly sorted each time). So an
+// insertion sort, which costs little more than a pass over a nearly sorted list; one that has
+// moved entries by more than 8 places each on average is finished by std::sort instead.
 template <class Swept>
 void sort_by_distance(std::vector<Swept>& order, const Scene& scene, Vec2 from) {
   for (Swept& s : order) s.distance = min_distance(from, scene.buildings[s.building].bounds.plan());
-  std::sort(order.begin(), order.end());
+  std::size_t moves = 0;
+  const std::size_t budget = 8 * order.size();
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const Swept s = order[i];
+    std::size_t j = i;
+    for (; j > 0 && s < order[j - 1]; --j) order[j] = order[j - 1];
+    order[j] = s;
+    moves += i - j;
+    if (moves > budget) {
+      std::sort(order.begin(), order.end());
+      return;
+    }
+  }
 }
 
 // The certificate's swept buildings, each with the vertices fixed over the region's disc (its
 // box's corners, then each CVP's ring). The disc is widened by 1e-9 of its radius so that an eye
-// MotionRegion::contains admits within rounding is inside it.
+// MotionRegion::contains admits within rounding is inside it. With the certainly visible
+// buildings' ids, sorted: the part of every query's PVS known in advance.
 template <class Swept>
 void fix_vertices(const RegionCertificate& certificate, const MotionRegion& region, const Scene& scene,
-                  std::vector<Swept>& order, std::vector<DiscVertices>& vertices) {
+                  std::vector<Swept>& order, std::vector<DiscVertices>& vertices, std::vector<ObjectId>& visible_ids) {
+  visible_ids.clear();
+  for (std::uint32_t b : certificate.visible()) visible_ids.push_back(scene.buildings[b].id);
+  std::sort(visible_ids.begin(), visible_ids.end());
   order.clear();
   vertices.clear();
   const Vec2 centre = plan(region.anchor.position);
@@ -72,12 +91,14 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     bool prefetched = false;
     if (prefetch_.pending()) {
       prefetch_.wait();  // rethrows what the thread threw
+      stats.background_ms = next_stats_.background_ms;  // spent whether it is taken or not
       if (next_region_->contains(camera)) {
         std::swap(current_, spare_);
         region_ = *next_region_;
         stats = next_stats_;
         order_.swap(next_order_);  // sorted from the region's centre: nearly sorted from here
         vertices_.swap(next_vertices_);
+        visible_ids_.swap(next_visible_ids_);
         prefetched = true;
         ++prefetch_hits_;
       }
@@ -85,7 +106,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     if (!prefetched) {
       region_ = MotionRegion{anchor, options_.delta_radius, options_.delta_height, options_.delta_turn};
       current_->certify(*region_, stats);
-      fix_vertices(*current_, *region_, scene_, order_, vertices_);
+      fix_vertices(*current_, *region_, scene_, order_, vertices_, visible_ids_);
     }
     stats.guard_fires = 1;
     // Next: where re-anchoring on a straight walk would put the region, 1.9 ε on from this one's
@@ -97,9 +118,11 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       next_region_ = MotionRegion{next, options_.delta_radius, options_.delta_height, options_.delta_turn};
       next_stats_ = CullStatistics{};
       prefetch_.start([this] {
+        const auto began = std::chrono::steady_clock::now();
         spare_->certify(*next_region_, next_stats_);
-        fix_vertices(*spare_, *next_region_, scene_, next_order_, next_vertices_);
+        fix_vertices(*spare_, *next_region_, scene_, next_order_, next_vertices_, next_visible_ids_);
         sort_by_distance(next_order_, scene_, plan(next_region_->anchor.position));
+        next_stats_.background_ms = ms_since(began);
       });
     }
   }
@@ -113,9 +136,11 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   horizon_.reset();
   horizon_.restrict_to(azimuth_coverage(camera));
   horizon_.take_node_visits();
-  ShadowQueue pending;
-  std::vector<std::optional<ConvexSpan>> spans;
-  std::vector<std::uint32_t> found;  // uncertain buildings found visible
+  ShadowQueue& pending = pending_;
+  pending.clear();
+  std::vector<std::optional<ConvexSpan>>& spans = spans_;
+  std::vector<std::uint32_t>& found = last_found_;  // uncertain buildings found visible
+  found.clear();
   for (const Swept& swept : order_) {
     pending.merge_nearer_than(swept.distance, horizon_, stats);
     const std::uint32_t b = swept.building;
@@ -155,13 +180,14 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
   stats.horizon_nodes += horizon_.take_node_visits();
   stats.items_skipped = current_->visible().size() + current_->hidden_count();
 
-  last_pvs_ = current_->visible();
-  last_pvs_.insert(last_pvs_.end(), found.begin(), found.end());
-  result.pvs.reserve(last_pvs_.size());
-  for (std::uint32_t b : last_pvs_) result.pvs.push_back(scene_.buildings[b].id);
-  std::sort(result.pvs.begin(), result.pvs.end());
+  // The certainly visible, sorted with the certificate, merged with the few found visible.
+  found_ids_.clear();
+  for (std::uint32_t b : found) found_ids_.push_back(scene_.buildings[b].id);
+  std::sort(found_ids_.begin(), found_ids_.end());
+  result.pvs.resize(visible_ids_.size() + found_ids_.size());
+  std::merge(visible_ids_.begin(), visible_ids_.end(), found_ids_.begin(), found_ids_.end(), result.pvs.begin());
   last_camera_ = camera;
-  stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats.cull_ms = ms_since(start);
   return result;
 }
 
@@ -176,12 +202,15 @@ OcclusionHorizon& GuardedDeltaHorizonCulling::horizon() {
   ShadowQueue shadows;
   CullStatistics unused;
   std::vector<std::optional<ConvexSpan>> spans;
-  for (std::uint32_t b : last_pvs_) {
+  auto cast = [&](std::uint32_t b) {
     const Building& building = scene_.buildings[b];
     spans.clear();
     for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
     queue_shadows(shadows, ShadowRule::conservative, building, eye, min_distance(e, building.bounds.plan()), unclipped, spans);
-  }
+  };
+  // The last query's PVS: the certificate it used (current_ until the next query) and what it found.
+  for (std::uint32_t b : current_->visible()) cast(b);
+  for (std::uint32_t b : last_found_) cast(b);
   shadows.merge_all(final_, unused);
   return final_;
 }

@@ -40,6 +40,7 @@
 
 #include "core/background_task.hpp"
 #include "engine/delta_horizon/motion_region.hpp"
+#include "engine/horizon/horizon_sweep.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/horizon/polar_geometry.hpp"
 #include "engine/method.hpp"
@@ -78,7 +79,7 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
   CullStatistics next_stats_;
   std::uint64_t prefetch_hits_ = 0;
   std::optional<Camera> last_camera_;
-  std::vector<std::uint32_t> last_pvs_;  // scene indices
+  std::vector<std::uint32_t> last_found_;  // scene indices of the uncertain buildings the last query found visible
   // A swept building, its distance from the eye (the order of the sweep), and where its
   // vertices fixed for the region start in `vertices_`: [0] its box's corners, [1 + p] CVP p.
   struct Swept {
@@ -87,10 +88,16 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
     std::uint32_t vertices;
     bool operator<(const Swept& o) const { return distance != o.distance ? distance < o.distance : building < o.building; }
   };
-  std::vector<Swept> order_;                // swept buildings by distance
-  std::vector<DiscVertices> vertices_;      // fixed over *region_ (polar_geometry.hpp)
-  std::vector<Swept> next_order_;           // *spare_'s, from next_region_'s centre
+  std::vector<Swept> order_;                 // swept buildings by distance
+  std::vector<DiscVertices> vertices_;       // fixed over *region_ (polar_geometry.hpp)
+  std::vector<ObjectId> visible_ids_;        // the certainly visible buildings' ids, ascending
+  std::vector<Swept> next_order_;            // *spare_'s, from next_region_'s centre
   std::vector<DiscVertices> next_vertices_;  // fixed over *next_region_
+  std::vector<ObjectId> next_visible_ids_;
+  // A query's scratch, kept for its capacity.
+  ShadowQueue pending_;
+  std::vector<std::optional<ConvexSpan>> spans_;
+  std::vector<ObjectId> found_ids_;
   // Certifies next_region_ into *spare_ and sorts next_order_ (declared last: joined first).
   BackgroundTask prefetch_;
 };
