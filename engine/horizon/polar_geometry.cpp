@@ -189,12 +189,11 @@ DiscVertices disc_vertices(const Vec2* ring, std::size_t n, Vec2 centre, double 
                             kMargin * reach * reach;
   if (alone) out.farthest = static_cast<std::uint32_t>(far);
 
-  std::vector<double> edge_distance(n);
+  auto edge_distance = [&](std::size_t i) {
+    return std::sqrt(segment_distance_squared(centre, ring[i == 0 ? n - 1 : i - 1], ring[i]));
+  };
   double nearest = HUGE_VAL;
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    edge_distance[i] = std::sqrt(segment_distance_squared(centre, ring[j], ring[i]));
-    nearest = std::min(nearest, edge_distance[i]);
-  }
+  for (std::size_t i = 0; i < n; ++i) nearest = std::min(nearest, edge_distance(i));
   const double magnitude = std::max({std::abs(centre.x), std::abs(centre.y), std::abs(box.lo.x), std::abs(box.lo.y),
                                      std::abs(box.hi.x), std::abs(box.hi.y)});
   const double beaten = (nearest + radius) * (1.0 + kMargin) + kMargin * magnitude + radius;
@@ -202,7 +201,7 @@ DiscVertices disc_vertices(const Vec2* ring, std::size_t n, Vec2 centre, double 
   std::size_t candidates = 0, first = 0, gap = 0, last = kNoVertex;
   for (std::size_t k = 0; k < 2 * n; ++k) {
     const std::size_t i = k % n;
-    if (!(edge_distance[i] <= beaten)) continue;
+    if (!(edge_distance(i) <= beaten)) continue;
     if (k < n) ++candidates;
     if (last != kNoVertex && k - last - 1 > gap && last < n) gap = k - last - 1, first = i;
     last = k;
