@@ -91,7 +91,7 @@ void check_disc(Tally& tally) {
     if (fixed.tangents_fixed())
       RC_ASSERT(same_span(span_from_tangents(ring.data(), ring.size(), fixed, eye), span));
     if (fixed.farthest_fixed())
-      RC_ASSERT(same_bits(distance_to_vertex(ring.data(), fixed, eye), max_vertex_distance(ring, eye)));
+      RC_ASSERT(same_bits(distance_to_vertex(ring.data(), ring.size(), fixed, eye), max_vertex_distance(ring, eye)));
     if (fixed.nearest_fixed())
       RC_ASSERT(same_bits(distance_to_edge(ring.data(), ring.size(), fixed, eye), min_boundary_distance(ring, eye)));
     if (at_centre && span)

@@ -148,17 +148,15 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     const DiscVertices* fixed = vertices_.data() + swept.vertices;
     auto span_of = [&](std::size_t p) {
       const std::vector<Vec2>& ring = building.prisms[p].ring;
-      return fixed[1 + p].tangents_fixed() ? span_from_tangents(ring.data(), ring.size(), fixed[1 + p], e)
-                                           : convex_span(ring, e);
+      return span_from_tangents(ring.data(), ring.size(), fixed[1 + p], e);
     };
     auto farthest_of = [&](std::size_t p) {
       const std::vector<Vec2>& ring = building.prisms[p].ring;
-      return fixed[1 + p].farthest_fixed() ? distance_to_vertex(ring.data(), fixed[1 + p], e) : max_vertex_distance(ring, e);
+      return distance_to_vertex(ring.data(), ring.size(), fixed[1 + p], e);
     };
     auto nearest_of = [&](std::size_t p) {
       const std::vector<Vec2>& ring = building.prisms[p].ring;
-      return fixed[1 + p].nearest_fixed() ? distance_to_edge(ring.data(), ring.size(), fixed[1 + p], e)
-                                          : min_boundary_distance(ring, e);
+      return distance_to_edge(ring.data(), ring.size(), fixed[1 + p], e);
     };
     if (current_->certainly_visible(b)) {
       spans.clear();
@@ -168,8 +166,7 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       if (!volume.may_intersect(building.bounds)) continue;
       const Box2 box = building.bounds.plan();
       const std::array<Vec2, 4> corners = box_corners(box);
-      const auto box_view = fixed[0].tangents_fixed() ? span_from_tangents(corners.data(), corners.size(), fixed[0], e)
-                                                      : box_span(box, e);
+      const auto box_view = span_from_tangents(corners.data(), corners.size(), fixed[0], e);
       if (box_hidden(horizon_, box_view, box, building.height, eye) ||
           !prisms_visible(horizon_, building, eye, spans, span_of, nearest_of, farthest_of))
         continue;

@@ -25,9 +25,9 @@
 // in the frame that takes it (cells, buildings, horizon entries), and its wall time on the other
 // core is not in cull_ms.
 // Fixed vertices (issue 17): with each certificate, the swept buildings' tangent and farthest
-// vertices are found for the whole region where they provably do not change in it
-// (disc_vertices), so a frame reads two vertices and one for a span and a farthest distance
-// instead of walking every ring; the values are OH(OS)'s bit for bit.
+// vertices and the edges that can be nearest are found for the whole region where they provably
+// do not change in it (disc_vertices), so a frame reads a few vertices for a span and its
+// distances instead of walking every ring; the values are OH(OS)'s bit for bit.
 // horizon() materialises the horizon OH(OS) would leave (every visible building's shadows) on
 // demand; the per-frame sweep only builds it where uncertain buildings need it.
 // Statistics: items_skipped counts buildings decided without a test; guard_fires is 1 on

@@ -109,16 +109,19 @@ std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye) {
 }
 
 std::optional<ConvexSpan> span_from_tangents(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye) {
+  if (!v.tangents_fixed()) return span_of_convex(ring, n, eye);
   return span_between(ring, n, v.first_tangent, v.last_tangent, eye, ring[v.first_tangent] - eye,
                       ring[v.last_tangent] - eye, /*check_bisector=*/false);
 }
 
-double distance_to_vertex(const Vec2* ring, const DiscVertices& v, Vec2 eye) {
+double distance_to_vertex(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye) {
+  if (!v.farthest_fixed()) return max_vertex_distance(ring, n, eye);
   const Vec2 d = ring[v.farthest] - eye;
   return std::sqrt(std::max(0.0, dot(d, d)));  // max_vertex_distance's arithmetic
 }
 
 double distance_to_edge(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye) {
+  if (!v.nearest_fixed()) return min_boundary_distance(ring, n, eye);
   // min_boundary_distance's arithmetic over the edges that can be nearest; a minimum of the same
   // values in another order is the same value.
   double d2 = HUGE_VAL;
@@ -213,9 +216,11 @@ DiscVertices disc_vertices(const Vec2* ring, std::size_t n, Vec2 centre, double 
   return out;
 }
 
-double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye) {
+double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye) { return max_vertex_distance(ring.data(), ring.size(), eye); }
+
+double max_vertex_distance(const Vec2* ring, std::size_t n, Vec2 eye) {
   double d2 = 0.0;
-  for (Vec2 p : ring) d2 = std::max(d2, dot(p - eye, p - eye));
+  for (std::size_t i = 0; i < n; ++i) d2 = std::max(d2, dot(ring[i] - eye, ring[i] - eye));
   return std::sqrt(d2);
 }
 

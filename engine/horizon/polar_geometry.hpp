@@ -54,14 +54,14 @@ struct DiscVertices {
   bool nearest_fixed() const { return near_first != kNoVertex; }
 };
 DiscVertices disc_vertices(const Vec2* ring, std::size_t n, Vec2 centre, double radius);
-// Only with tangents_fixed(), from an eye of its disc.
+// From an eye of v's disc: convex_span, max_vertex_distance and min_boundary_distance, read off
+// the choices v fixed, or computed over the whole ring where it fixed none.
 std::optional<ConvexSpan> span_from_tangents(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye);
-// Only with farthest_fixed(), from an eye of its disc.
-double distance_to_vertex(const Vec2* ring, const DiscVertices& v, Vec2 eye);
-// Only with nearest_fixed(), from an eye of its disc.
+double distance_to_vertex(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye);
 double distance_to_edge(const Vec2* ring, std::size_t n, const DiscVertices& v, Vec2 eye);
 
 double max_vertex_distance(const std::vector<Vec2>& ring, Vec2 eye);
+double max_vertex_distance(const Vec2* ring, std::size_t n, Vec2 eye);
 // Distance from the eye to the polygon's boundary (eye outside).
 double min_boundary_distance(const std::vector<Vec2>& ring, Vec2 eye);
 double min_boundary_distance(const Vec2* ring, std::size_t n, Vec2 eye);
