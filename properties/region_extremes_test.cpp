@@ -23,6 +23,7 @@
 #include <sstream>
 
 #include "core/scene_io.hpp"
+#include "engine/horizon/horizon_sweep.hpp"
 #include "engine/method.hpp"
 #include "generators/kept_cases.hpp"
 #include "generators/open_space.hpp"
@@ -478,6 +479,70 @@ TEST(RegionExtremes, KeptCounterexampleOpenDiscLowOccluder) {
   const std::vector<ObjectId> at_from = make_method("oh_os_conservative", c->scene)->cull(from).pvs;
   EXPECT_TRUE(std::binary_search(at_from.begin(), at_from.end(), 1u));
   expect_refutation(*c, region, from, 1);
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// 6. The edge of an occluder's umbra, where the region sweeps test targets by their span narrowed
+// by asin(ε / R) (target_span, engine/horizon/horizon_sweep.hpp).
+//
+// From the disc of ε = √2 m at the origin, the box A = [10, 20] x [5, 15] (30 m tall) has its
+// lowest-azimuth tangent vertex V = (20, 5). The edge of its umbra is the line L through V tangent
+// to the disc: direction atan2(5, 20) + asin(ε / |V|) = 17.97 degrees, touching the circle at
+// P = (0.44, -1.35). Behind it, a 4 x 4 m box 10 m tall at x = [60, 64] whose near side is at
+// y = `side`: L passes y = 19.27 at x = 64, so the box lies wholly inside the umbra for
+// side = 19.6 (0.33 m inside: hidden from every eye of the disc) and pokes out of it for
+// side = 18.9 (a 1.1 m strip of its south face shows to P). Seen from the origin, both lie below
+// the shrunk span's start (17.03 and 16.45 degrees): only the narrowed target test hides the first
+// (by 0.25 degrees), and narrowing by twice the margin would hide the second (by 1.2 degrees) too.
+Scene umbra_edge(double side) {
+  Scene s;
+  s.buildings.push_back(box_building(0, 10, 5, 20, 15, 30));
+  s.buildings.push_back(box_building(1, 60, side, 64, side + 4, 10));
+  return s;
+}
+
+TEST(RegionExtremes, TargetAtTheEdgeOfTheUmbra) {
+  const double epsilon = std::sqrt(2.0);
+  const ViewRegion region{level_camera({0, 0}, 0.0, kPi / 3), epsilon, 0.0};
+  const Vec2 v{20, 5};
+  const double edge = std::atan2(v.y, v.x) + std::asin(epsilon / length(v));
+  const Vec2 p{epsilon * std::sin(edge), -epsilon * std::cos(edge)};  // where L touches the circle
+  ASSERT_NEAR(std::abs(cross(Vec2{std::cos(edge), std::sin(edge)}, v - p)), 0.0, 1e-12);
+  Camera at_p = region.camera;
+  at_p.position = {p.x * (1 - 1e-6), p.y * (1 - 1e-6), kEye};  // a hair inside the disc
+  const std::vector<std::string> narrowing{"shrink_adjustable_corrected", "shrink_adjustable_conservative"};
+
+  // Inside the umbra: no eye sees it, and both methods that narrow targets cull it.
+  {
+    const auto c = make_case("umbra_inside", umbra_edge(19.6));
+    std::vector<Camera> eyes = disc_viewpoints(*c, region, 64);
+    eyes.push_back(at_p);
+    const auto pvs = hold_region(*c, region, "target 0.33 m inside the umbra", 64);
+    for (const Witnessed& w : witness(*c, eyes))
+      EXPECT_FALSE(std::binary_search(w.seen.visible.begin(), w.seen.visible.end(), ObjectId(1)))
+          << "the oracle sees the target from " << camera_text(w.viewpoint);
+    for (const std::string& name : narrowing)
+      EXPECT_EQ(pvs.at(name), std::vector<ObjectId>{0}) << name << " keeps the target inside the umbra";
+  }
+  // Poking out of it: P sees it, so every claimed method keeps it; twice the narrowing would not.
+  {
+    const auto c = make_case("umbra_outside", umbra_edge(18.9));
+    const oracle::OracleAnswer seen = c->truth->visible_set(at_p, fine_oracle());
+    EXPECT_TRUE(std::binary_search(seen.visible.begin(), seen.visible.end(), ObjectId(1)))
+        << "the oracle does not see the target from P " << camera_text(at_p);
+    const auto pvs = hold_region(*c, region, "target 0.37 m outside the umbra", 64);
+    for (const std::string& name : narrowing)
+      EXPECT_EQ(pvs.at(name), (std::vector<ObjectId>{0, 1})) << name << " culls the target P sees";
+    // The straw man: the target's span narrowed by asin(2ε / R) starts past the shrunk shadow's
+    // start, so a sweep narrowing twice as much would cull what P sees.
+    const Box2 target{{60, 18.9}, {64, 22.9}};
+    const auto span = box_span(target, {0, 0});
+    ASSERT_TRUE(span.has_value());
+    const double farthest = max_distance({0, 0}, target);
+    EXPECT_GT(target_span(span->span, 2 * epsilon, farthest).begin, edge + 1e-3);
+    EXPECT_LT(target_span(span->span, epsilon, farthest).begin, edge - 1e-3);
+  }
 }
 
 }  // namespace

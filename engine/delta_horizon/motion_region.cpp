@@ -85,6 +85,18 @@ struct RegionBounds {
     return std::pair{g, widen(slope)};
   }
 
+  // The same item for a test of what any eye of the region sees, not of OH(OS)'s decision there
+  // (the certificate's true-visibility mode): its slope raised as grown_item's, its span narrowed
+  // by target_span (engine/horizon/horizon_sweep.hpp) instead of widened. Its points at
+  // distance R keep within asin(ε / R) of the shrunk shadows' narrowed spans, which puts them
+  // inside each eye's shadow; OH(OS)'s own test at that eye would read the wider span.
+  std::optional<std::pair<AzimuthSpan, double>> seen_item(const AzimuthSpan& span, double top, double near,
+                                                          double far) const {
+    auto g = grown_item(span, top, near, far);
+    if (g) g->first = target_span(span, eps, widen(far));
+    return g;
+  }
+
   // A CVP's highest slope, lowered to its minimum over the region, with its span narrowed: every
   // camera's span holds the narrowed one (see narrowed), and the CVP reaches at least
   // this slope over it. Empty when nothing is left.
@@ -285,10 +297,14 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
   const auto& cells = quadtree_.cells();
   if (!cells.empty() && cells[0].last > cells[0].first) sweep.push({min_distance(e, cells[0].bounds), false, 0});
 
+  // An item's span and slope for the hidden test: OH(OS)'s at every camera, or what every eye sees.
+  auto tested = [&](const AzimuthSpan& span, double top, double near, double far) {
+    return same_as_oh_os ? bounds.grown_item(span, top, near, far) : bounds.seen_item(span, top, near, far);
+  };
   auto hidden_box = [&](const Box2& box, double top) {
     const auto span = box_span(box, e);
     if (!span) return false;
-    const auto g = bounds.grown_item(span->span, top, min_distance(e, box), max_distance(e, box));
+    const auto g = tested(span->span, top, min_distance(e, box), max_distance(e, box));
     return g && shrunk_.hides(g->first, g->second);
   };
   // The CVPs of every candidate seen from the anchor (computed once, read again by decide).
@@ -364,8 +380,8 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
       hidden = true;
       for (std::size_t p = 0; p < building.prisms.size() && hidden; ++p) {
         const ConvexVerticalPrism& prism = building.prisms[p];
-        const auto g = spans[p] ? bounds.grown_item(spans[p]->span, prism.height, min_boundary_distance(prism.ring, e),
-                                                    max_vertex_distance(prism.ring, e))
+        const auto g = spans[p] ? tested(spans[p]->span, prism.height, min_boundary_distance(prism.ring, e),
+                                         max_vertex_distance(prism.ring, e))
                                 : std::nullopt;
         hidden = g && shrunk_.hides(g->first, g->second);
       }

@@ -69,7 +69,8 @@ class RegionCertificate {
   // With `same_as_oh_os` (the guarded ΔH), "hidden" means OH(OS) culls it at every camera of the
   // region, so only buildings OH(OS) surely tests there may occlude. Without it (from-region
   // PVS), "hidden" means hidden from every camera, and any building's shrunk shadow counts:
-  // a shadow is real occlusion whether or not its building is in the view volume.
+  // a shadow is real occlusion whether or not its building is in the view volume; and an item is
+  // tested by its span narrowed for the region (RegionBounds::seen_item), not widened.
   void certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os = true);
 
   // Scene indices of the certainly visible buildings, ascending.

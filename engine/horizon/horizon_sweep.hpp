@@ -123,25 +123,45 @@ struct SweepItem {
   }
 };
 
+// The span a from-region sweep tests a target by (engine/shrinking/region_sweep.hpp): for shadows
+// narrowed by asin(ε / r) at a tangent vertex r away (the sight line from the disc's edge, taken
+// at its limit direction), a target point X at distance R from the centre is hidden by that
+// shadow if its azimuth lies within asin(ε / R) outside it: the umbra's edge is the line through
+// the vertex tangent to the disc, which at distance R lies that much outside the limit direction.
+// So a target whose points all lie within `farthest` is tested by its span narrowed by
+// asin(ε / farthest) at each end (to its middle when less is left). Along a street, where the
+// facades' setbacks decide what shows past the nearer ones, this is about ε of lateral room at
+// the target. `margin` ε = 0 (OH(OS)'s own sweeps) or a target within 2ε: the span unchanged.
+inline AzimuthSpan target_span(const AzimuthSpan& span, double margin, double farthest) {
+  if (!(margin > 0.0) || !(farthest > 2 * margin) || span.full_circle()) return span;
+  // A hair less than asin's value, so that its rounding never narrows too much.
+  const double by = std::asin(margin / farthest) * (1.0 - 1e-12);
+  AzimuthSpan out = span;
+  out.begin += by, out.end -= by;
+  if (out.begin > out.end) out.begin = out.end = span.begin + (span.end - span.begin) / 2;
+  return out;
+}
+
 // OH(OS)'s tests, shared by every sweep that uses them:
 // a box (cell or building bounds, standing on the ground up to `top`) is hidden when its highest
 // slope lies below the horizon over its azimuth span; a box that contains the eye is not.
-// `span` is box_span(box, plan(eye)), however the caller found it.
+// `span` is box_span(box, plan(eye)), however the caller found it. `margin`: target_span's.
 inline bool box_hidden(OcclusionHorizon& horizon, const std::optional<ConvexSpan>& span, const Box2& box, double top,
-                       Vec3 eye) {
+                       Vec3 eye, double margin = 0.0) {
   if (!span) return false;
   const Vec2 e = plan(eye);
-  return horizon.hides(span->span, max_slope(top, eye.z, min_distance(e, box), max_distance(e, box)));
+  const double farthest = max_distance(e, box);
+  return horizon.hides(target_span(span->span, margin, farthest), max_slope(top, eye.z, min_distance(e, box), farthest));
 }
-inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, Vec3 eye) {
-  return box_hidden(horizon, box_span(box, plan(eye)), box, top, eye);
+inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, Vec3 eye, double margin = 0.0) {
+  return box_hidden(horizon, box_span(box, plan(eye)), box, top, eye, margin);
 }
 // A quadtree cell is hidden when both boxes of its height split are (Quadtree::Cell): its tall
 // buildings' box up to the tallest, and the whole cell up to the others' height. Sharper than
 // the whole cell up to the tallest, and as conservative: every building lies in one of them.
-inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, Vec3 eye) {
-  return box_hidden(horizon, cell.tall_bounds, cell.max_height, eye) &&
-         (!cell.has_rest() || box_hidden(horizon, cell.bounds, cell.rest_height, eye));
+inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, Vec3 eye, double margin = 0.0) {
+  return box_hidden(horizon, cell.tall_bounds, cell.max_height, eye, margin) &&
+         (!cell.has_rest() || box_hidden(horizon, cell.bounds, cell.rest_height, eye, margin));
 }
 // A building whose box is not hidden is visible unless every CVP is hidden; `spans` receives
 // each CVP's span for its shadows.
@@ -151,24 +171,29 @@ inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, V
 template <class SpanOf, class NearestOf, class FarthestOf>
 bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
                     std::vector<std::optional<ConvexSpan>>& spans, const SpanOf& span_of, const NearestOf& nearest_of,
-                    const FarthestOf& farthest_of) {
+                    const FarthestOf& farthest_of, double margin = 0.0) {
   spans.clear();
   bool visible = false;
   for (std::size_t p = 0; p < building.prisms.size(); ++p) {
     spans.push_back(span_of(p));
     const auto& span = spans.back();
-    visible = visible || !span ||
-              !horizon.hides(span->span, max_slope(building.prisms[p].height, eye.z, nearest_of(p), farthest_of(p)));
+    if (visible || !span) {
+      visible = true;
+      continue;
+    }
+    const double farthest = farthest_of(p);
+    visible = !horizon.hides(target_span(span->span, margin, farthest),
+                             max_slope(building.prisms[p].height, eye.z, nearest_of(p), farthest));
   }
   return visible;
 }
 inline bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
-                           std::vector<std::optional<ConvexSpan>>& spans) {
+                           std::vector<std::optional<ConvexSpan>>& spans, double margin = 0.0) {
   const Vec2 e = plan(eye);
   return prisms_visible(
       horizon, building, eye, spans, [&](std::size_t p) { return convex_span(building.prisms[p].ring, e); },
       [&](std::size_t p) { return min_boundary_distance(building.prisms[p].ring, e); },
-      [&](std::size_t p) { return max_vertex_distance(building.prisms[p].ring, e); });
+      [&](std::size_t p) { return max_vertex_distance(building.prisms[p].ring, e); }, margin);
 }
 // Whether a shadow computed from geometry may be merged: a NaN or infinite slope (or distance)
 // comes from degenerate input (overflowing coordinates, a zero distance) and must hide nothing.
@@ -208,7 +233,9 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
 //    union of sample PVSs, engine/shrinking/view_cell.hpp) is accepted without its horizon tests
 //    and casts its shadows. That changes nothing else: had it been hidden, each of its CVPs lay
 //    below H over its span, and a shadow is never above the CVP's own highest slope over a span
-//    within the CVP's (shrunk shadows even less), so merging it raises no bin.
+//    within the CVP's (shrunk shadows even less), so merging it raises no bin. With a
+//    `target_margin` the CVP lay below H over its span narrowed by asin(ε / farthest), and a
+//    shadow shrunk at its tangent vertices (no farther) is narrowed at least that much.
 //  - `pending`: the queue shadows wait in. It may arrive holding shadows already (a passive-
 //    target sweep replays a building sweep's shadows); whatever is left is merged at the end.
 //  - `leave_out(is_building, index)`: a cell or building the caller does not need to see at all,
@@ -216,10 +243,12 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
 //    they would add is known, and they hide nothing), so the rest of the sweep is unchanged.
 //  - `cast_reads_spans`: false when `cast` ignores the spans (methods whose shadows come from
 //    occluders shrunk beforehand): a known building's CVP spans are then not computed at all.
+//  - `target_margin`: target_span's ε for the cells and buildings tested (0: OH(OS)'s tests).
 template <class Meets, class CastShadows, class Known, class LeaveOut>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
                    bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, const Known& known,
-                   const LeaveOut& leave_out, ShadowQueue& pending, CullResult& result, bool cast_reads_spans = true) {
+                   const LeaveOut& leave_out, ShadowQueue& pending, CullResult& result, bool cast_reads_spans = true,
+                   double target_margin = 0.0) {
   CullStatistics& stats = result.stats;
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
@@ -243,7 +272,7 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
       const Quadtree::Cell& cell = cells[item.index];
       ++stats.cells_tested;
       const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-      if (!meets(volume, box) || cell_hidden(horizon, cell, eye)) continue;
+      if (!meets(volume, box) || cell_hidden(horizon, cell, eye, target_margin)) continue;
       quadtree.for_each_child(
           cell,
           [&](std::uint32_t c) {
@@ -263,8 +292,8 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
         for (const ConvexVerticalPrism& prism : building.prisms) spans.push_back(convex_span(prism.ring, e));
     } else {
       ++stats.buildings_tested;
-      if (!meets(volume, building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye) ||
-          !prisms_visible(horizon, building, eye, spans))
+      if (!meets(volume, building.bounds) || box_hidden(horizon, building.bounds.plan(), building.height, eye, target_margin) ||
+          !prisms_visible(horizon, building, eye, spans, target_margin))
         continue;
     }
     result.pvs.push_back(building.id);

@@ -120,7 +120,7 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                       // equations know no near plane, and every eye's guard would drop a wall
                       // crossing the disc as an occluder, hiding the ledger's refutation of
                       // Eq. 4-5 behind a rule of ours (kept case slab_across_the_disc).
-                      /*guard_every_eye=*/corrected_);
+                      /*guard_every_eye=*/corrected_, /*cast_reads_spans=*/true, /*narrow_targets=*/corrected_);
 }
 
 // Wonka et al.'s shrinking as ch. 4.1.1 describes it: each CVP's footprint moved inward by ε

@@ -23,13 +23,15 @@ namespace cullcheck {
 // `known`, when given, marks buildings the caller already holds (RegionCullingMethod::
 // cull_region_carrying): they are accepted untested and cast their shadows.
 // `cast_reads_spans`: false when `cast` ignores its spans argument (sweep_horizon).
+// `narrow_targets`: test targets by target_span with ε = the region's radius (horizon_sweep.hpp);
+// only for shadows narrowed as that proof assumes (shrink_adjustable_corrected's).
 // `passive`, when given, is swept after the buildings against the same shadows (passive_targets.hpp)
 // into result.passive; `known_passive` marks targets already held, which are left out of it.
 template <class CastShadows>
 CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const ViewRegion& region,
                         const CastShadows& cast, const std::vector<char>* known = nullptr,
                         PassiveTargets* passive = nullptr, const std::vector<char>* known_passive = nullptr,
-                        bool guard_every_eye = true, bool cast_reads_spans = true) {
+                        bool guard_every_eye = true, bool cast_reads_spans = true, bool narrow_targets = false) {
   const double reach = guard_every_eye ? region.radius : 0.0;
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
@@ -47,7 +49,7 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
         cast(queue, index, eye, distance, unclipped + reach, spans);
       },
       [&](std::uint32_t b) { return known && (*known)[b] != 0; }, [](bool, std::uint32_t) { return false; }, pending,
-      result, cast_reads_spans);
+      result, cast_reads_spans, narrow_targets ? region.radius : 0.0);
   std::sort(result.pvs.begin(), result.pvs.end());
   if (passive) result.passive = passive->visible(region, log, known_passive, result.stats);
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
