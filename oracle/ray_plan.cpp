@@ -134,8 +134,9 @@ void ViewCone::rays_toward(const std::vector<Vec3>& points, const PlannedRay& pr
         for (std::size_t i = 0; i < m; ++i) {
           const Vec3 d = direction[i];
           along[i] = dot(planes[4].n, d);
-          inside[i] = !(dot(planes[0].n, d) < 0.0) & !(dot(planes[1].n, d) < 0.0) & !(dot(planes[2].n, d) < 0.0) &
-                      !(dot(planes[3].n, d) < 0.0) & (along[i] > 0.0);
+          // Bitwise on purpose (no branch per plane); as ints, which clang asks for.
+          inside[i] = (int(!(dot(planes[0].n, d) < 0.0)) & int(!(dot(planes[1].n, d) < 0.0)) &
+                       int(!(dot(planes[2].n, d) < 0.0)) & int(!(dot(planes[3].n, d) < 0.0)) & int(along[i] > 0.0)) != 0;
         }
       }
       divide_run(near, along, t_near, m);

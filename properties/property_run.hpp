@@ -67,4 +67,25 @@ PropertyOutcome run_property(const std::string& id, int cases, bool shrink, Prop
   return out;
 }
 
+// rc::check for a property a test expects to fail (a method the oracle refutes, a search that
+// must find that): the same cases as rc::check (the run's parameters, seed and reproduce
+// entries), the failing case printed, but not reported to RapidCheck's exit summary, whose
+// "Some of your RapidCheck properties had failures" would read as a failure of the run. True
+// when the property held.
+template <class Testable>
+bool check_expecting_failure(const std::string& description, Testable&& testable) {
+  using namespace rc::detail;
+  const Configuration& config = configuration();
+  std::cerr << "\n- " << description << " (expected to fail)\n";
+  TestMetadata metadata;
+  metadata.id = description;
+  metadata.description = description;
+  TestListenerAdapter silent;
+  const TestResult result =
+      checkProperty(toProperty(std::forward<Testable>(testable)), metadata, config.testParams, silent, config.reproduce);
+  printResultMessage(result, std::cerr);
+  std::cerr << "\n";
+  return result.template is<SuccessResult>();
+}
+
 }  // namespace cullcheck
