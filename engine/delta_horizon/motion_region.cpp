@@ -265,7 +265,7 @@ RegionCertificate::RegionCertificate(const Scene& scene, const Quadtree& quadtre
 //    lies before X's nearest point, and then it is swept.
 // So a query that sweeps only the uncertain and relevant buildings decides each uncertain one
 // exactly as OH(OS) does, and the PVS is those plus the certainly visible.
-void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os) {
+void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os, bool narrow_targets) {
   if (++epoch_ == 0) {
     std::fill(visible_epoch_.begin(), visible_epoch_.end(), 0);
     epoch_ = 1;
@@ -299,7 +299,7 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
 
   // An item's span and slope for the hidden test: OH(OS)'s at every camera, or what every eye sees.
   auto tested = [&](const AzimuthSpan& span, double top, double near, double far) {
-    return same_as_oh_os ? bounds.grown_item(span, top, near, far) : bounds.seen_item(span, top, near, far);
+    return same_as_oh_os || !narrow_targets ? bounds.grown_item(span, top, near, far) : bounds.seen_item(span, top, near, far);
   };
   auto hidden_box = [&](const Box2& box, double top) {
     const auto span = box_span(box, e);

@@ -70,8 +70,9 @@ class RegionCertificate {
   // region, so only buildings OH(OS) surely tests there may occlude. Without it (from-region
   // PVS), "hidden" means hidden from every camera, and any building's shrunk shadow counts:
   // a shadow is real occlusion whether or not its building is in the view volume; and an item is
-  // tested by its span narrowed for the region (RegionBounds::seen_item), not widened.
-  void certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os = true);
+  // tested by its span narrowed for the region (RegionBounds::seen_item), not widened; or, with
+  // `narrow_targets` false, widened as for OH(OS) (what the certified shrinking did before).
+  void certify(const MotionRegion& region, CullStatistics& stats, bool same_as_oh_os = true, bool narrow_targets = true);
 
   // Scene indices of the certainly visible buildings, ascending.
   const std::vector<std::uint32_t>& visible() const { return visible_; }

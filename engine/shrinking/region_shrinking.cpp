@@ -82,12 +82,14 @@ std::optional<ShrunkShadow> corrected_shrunk_shadow(const ConvexVerticalPrism& p
 
 }  // namespace
 
-PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options, bool corrected)
+PublishedShadowShrinking::PublishedShadowShrinking(const Scene& scene, const MethodOptions& options, bool corrected,
+                                                   bool narrow_targets)
     : scene_(scene),
       options_(options),
       quadtree_(scene, options.quadtree_leaf_size),
       horizon_(options.horizon_bins),
-      corrected_(corrected) {}
+      corrected_(corrected),
+      narrow_targets_(corrected && narrow_targets) {}
 
 CullResult PublishedShadowShrinking::cull_region(const ViewRegion& region) { return sweep(region, nullptr, nullptr); }
 CullResult PublishedShadowShrinking::cull_region_carrying(const ViewRegion& region, const std::vector<char>& known,
@@ -120,7 +122,7 @@ CullResult PublishedShadowShrinking::sweep(const ViewRegion& region, const std::
                       // equations know no near plane, and every eye's guard would drop a wall
                       // crossing the disc as an occluder, hiding the ledger's refutation of
                       // Eq. 4-5 behind a rule of ours (kept case slab_across_the_disc).
-                      /*guard_every_eye=*/corrected_, /*cast_reads_spans=*/true, /*narrow_targets=*/corrected_);
+                      /*guard_every_eye=*/corrected_, /*cast_reads_spans=*/true, /*narrow_targets=*/narrow_targets_);
 }
 
 // Wonka et al.'s shrinking as ch. 4.1.1 describes it: each CVP's footprint moved inward by ε
@@ -160,15 +162,19 @@ std::optional<std::vector<Vec2>> shrink_convex_ring(const std::vector<Vec2>& rin
   return out;
 }
 
-CertifiedShadowShrinking::CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options)
-    : scene_(scene), quadtree_(scene, options.quadtree_leaf_size), certificate_(scene, quadtree_, options.horizon_bins) {}
+CertifiedShadowShrinking::CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options, bool narrow_targets)
+    : scene_(scene),
+      quadtree_(scene, options.quadtree_leaf_size),
+      certificate_(scene, quadtree_, options.horizon_bins),
+      narrow_targets_(narrow_targets) {}
 
 // The PVS: every building the certificate could not mark hidden (certainly visible or
 // uncertain); buildings certainly outside every view volume of the region are not in it.
 CullResult CertifiedShadowShrinking::cull_region(const ViewRegion& region) {
   const auto start = std::chrono::steady_clock::now();
   CullResult result;
-  certificate_.certify(MotionRegion{region.camera, region.radius, 0.0, region.turn}, result.stats, /*same_as_oh_os=*/false);
+  certificate_.certify(MotionRegion{region.camera, region.radius, 0.0, region.turn}, result.stats, /*same_as_oh_os=*/false,
+                       narrow_targets_);
   for (std::uint32_t b : certificate_.visible()) result.pvs.push_back(scene_.buildings[b].id);
   for (std::uint32_t b : certificate_.swept())
     if (!certificate_.certainly_visible(b)) result.pvs.push_back(scene_.buildings[b].id);

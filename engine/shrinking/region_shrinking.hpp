@@ -59,7 +59,10 @@ namespace cullcheck {
 // (region_extremes_test's TargetAtTheEdgeOfTheUmbra pins the edge).
 class PublishedShadowShrinking final : public RegionCullingMethod {
  public:
-  PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {}, bool corrected = false);
+  // `narrow_targets` (the corrected variant only): false tests targets by their whole spans, as
+  // before target_span (kept so that tests can count the buildings the narrowing decides).
+  PublishedShadowShrinking(const Scene& scene, const MethodOptions& options = {}, bool corrected = false,
+                           bool narrow_targets = true);
   std::string name() const override { return corrected_ ? "shrink_adjustable_corrected" : "shrink_adjustable_thesis"; }
   bool claims_conservative() const override { return corrected_; }
   CullResult cull_region(const ViewRegion& region) override;
@@ -78,6 +81,7 @@ class PublishedShadowShrinking final : public RegionCullingMethod {
   OcclusionHorizon horizon_;
   bool corrected_;
   std::optional<PassiveTargets> passive_;
+  bool narrow_targets_;
 };
 
 class FootprintShrinking final : public PreshrunkOccluders {
@@ -96,7 +100,8 @@ std::optional<std::vector<Vec2>> shrink_convex_ring(const std::vector<Vec2>& rin
 
 class CertifiedShadowShrinking final : public RegionCullingMethod {
  public:
-  CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options = {});
+  // `narrow_targets`: as PublishedShadowShrinking's (RegionCertificate::certify).
+  CertifiedShadowShrinking(const Scene& scene, const MethodOptions& options = {}, bool narrow_targets = true);
   std::string name() const override { return "shrink_adjustable_conservative"; }
   bool claims_conservative() const override { return true; }
   CullResult cull_region(const ViewRegion& region) override;
@@ -105,6 +110,7 @@ class CertifiedShadowShrinking final : public RegionCullingMethod {
   const Scene& scene_;
   Quadtree quadtree_;
   RegionCertificate certificate_;
+  bool narrow_targets_;
 };
 
 }  // namespace cullcheck
