@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <iostream>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace cullcheck {
@@ -43,6 +44,30 @@ struct PropertyOutcome {
   int cases = 0;  // successful cases run
 };
 
+// Checks `property` as `id` with `params`, printing its outcome; with `expect_failure` a failure
+// is not reported to RapidCheck's exit summary (whose "Some of your RapidCheck properties had
+// failures" would read as a failure of the run), and `reproduce`, when given, is the map of
+// failures to replay (rc::check's; RapidCheck's default without it).
+template <class Property>
+rc::detail::TestResult check_printed(const std::string& id, const rc::detail::TestParams& params, Property&& property,
+                                     bool expect_failure,
+                                     const std::unordered_map<std::string, rc::detail::Reproduce>* reproduce = nullptr) {
+  using namespace rc::detail;
+  TestMetadata metadata;
+  metadata.id = id;
+  metadata.description = id;
+  std::cerr << "\n- " << id << (expect_failure ? " (expected to fail)" : "") << "\n";
+  TestListenerAdapter silent;
+  // One branch runs, so `property` is forwarded once.
+  const TestResult result =
+      !expect_failure ? checkProperty(toProperty(std::forward<Property>(property)), metadata, params)
+      : reproduce     ? checkProperty(toProperty(std::forward<Property>(property)), metadata, params, silent, *reproduce)
+                      : checkProperty(toProperty(std::forward<Property>(property)), metadata, params, silent);
+  printResultMessage(result, std::cerr);
+  std::cerr << "\n";
+  return result;
+}
+
 // With `expect_failure`, a failure is not reported to RapidCheck's exit summary (whose
 // "reproduce" line would read as a real failure); the failing case is still printed.
 template <class Property>
@@ -52,15 +77,7 @@ PropertyOutcome run_property(const std::string& id, int cases, bool shrink, Prop
   params.maxSuccess = scaled_cases(cases);
   params.seed = property_seed(params.seed, id);
   params.disableShrinking = params.disableShrinking || !shrink;
-  TestMetadata metadata;
-  metadata.id = id;
-  metadata.description = id;
-  std::cerr << "\n- " << id << "\n";
-  TestListenerAdapter silent;
-  const TestResult result = expect_failure ? checkProperty(toProperty(std::forward<Property>(property)), metadata, params, silent)
-                                           : checkProperty(toProperty(std::forward<Property>(property)), metadata, params);
-  printResultMessage(result, std::cerr);
-  std::cerr << "\n";
+  const rc::detail::TestResult result = check_printed(id, params, std::forward<Property>(property), expect_failure);
   PropertyOutcome out;
   out.held = result.template is<SuccessResult>();
   if (out.held) out.cases = result.template get<SuccessResult>().numSuccess;
@@ -74,18 +91,9 @@ PropertyOutcome run_property(const std::string& id, int cases, bool shrink, Prop
 // when the property held.
 template <class Testable>
 bool check_expecting_failure(const std::string& description, Testable&& testable) {
-  using namespace rc::detail;
-  const Configuration& config = configuration();
-  std::cerr << "\n- " << description << " (expected to fail)\n";
-  TestMetadata metadata;
-  metadata.id = description;
-  metadata.description = description;
-  TestListenerAdapter silent;
-  const TestResult result =
-      checkProperty(toProperty(std::forward<Testable>(testable)), metadata, config.testParams, silent, config.reproduce);
-  printResultMessage(result, std::cerr);
-  std::cerr << "\n";
-  return result.template is<SuccessResult>();
+  const rc::detail::Configuration& config = rc::detail::configuration();
+  return check_printed(description, config.testParams, std::forward<Testable>(testable), true, &config.reproduce)
+      .template is<rc::detail::SuccessResult>();
 }
 
 }  // namespace cullcheck

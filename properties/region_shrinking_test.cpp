@@ -170,12 +170,12 @@ TEST(RegionShrinking, TargetNarrowingCullsOnlyWhatNoEyeOfTheDiscSees) {
     RC_PRE(!scene.buildings.empty());
     const ViewRegion region{r.scene_case.camera, r.radius, r.turn};
     std::vector<ObjectId> culled_by_narrowing;
+    auto pvs = [&](bool certified, bool narrow) -> std::vector<ObjectId> {
+      if (certified) return CertifiedShadowShrinking(scene, MethodOptions{}, narrow).cull_region(region).pvs;
+      return PublishedShadowShrinking(scene, MethodOptions{}, /*corrected=*/true, narrow).cull_region(region).pvs;
+    };
     for (const bool certified : {false, true}) {
-      auto narrowed = certified ? std::unique_ptr<RegionCullingMethod>(std::make_unique<CertifiedShadowShrinking>(scene))
-                                : std::make_unique<PublishedShadowShrinking>(scene, MethodOptions{}, true);
-      auto whole = certified ? std::unique_ptr<RegionCullingMethod>(std::make_unique<CertifiedShadowShrinking>(scene, MethodOptions{}, false))
-                             : std::make_unique<PublishedShadowShrinking>(scene, MethodOptions{}, true, false);
-      const std::vector<ObjectId> with = narrowed->cull_region(region).pvs, without = whole->cull_region(region).pvs;
+      const std::vector<ObjectId> with = pvs(certified, true), without = pvs(certified, false);
       // The narrowing only ever culls more.
       std::vector<ObjectId> added;
       std::set_difference(with.begin(), with.end(), without.begin(), without.end(), std::back_inserter(added));

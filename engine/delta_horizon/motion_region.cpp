@@ -79,10 +79,12 @@ struct RegionBounds {
   std::optional<std::pair<AzimuthSpan, double>> grown_item(const AzimuthSpan& span, double top, double near,
                                                            double far) const {
     if (!beyond_reach(near)) return std::nullopt;
-    const AzimuthSpan g = widened(span, azimuth_shift(eps, narrow(near)));
+    return std::pair{widened(span, azimuth_shift(eps, narrow(near))), raised_slope(top, near, far)};
+  }
+  // The item's highest slope over the region (grown_item's and seen_item's); near beyond reach.
+  double raised_slope(double top, double near, double far) const {
     const double rise = top - (a.z - zeta);
-    const double slope = rise >= 0.0 ? rise / (narrow(near) - widen(eps)) : rise / widen(far + eps);
-    return std::pair{g, widen(slope)};
+    return widen(rise >= 0.0 ? rise / (narrow(near) - widen(eps)) : rise / widen(far + eps));
   }
 
   // The same item for a test of what any eye of the region sees, not of OH(OS)'s decision there
@@ -92,9 +94,8 @@ struct RegionBounds {
   // inside each eye's shadow; OH(OS)'s own test at that eye would read the wider span.
   std::optional<std::pair<AzimuthSpan, double>> seen_item(const AzimuthSpan& span, double top, double near,
                                                           double far) const {
-    auto g = grown_item(span, top, near, far);
-    if (g) g->first = target_span(span, eps, widen(far));
-    return g;
+    if (!beyond_reach(near)) return std::nullopt;
+    return std::pair{target_span(span, eps, widen(far)), raised_slope(top, near, far)};
   }
 
   // A CVP's highest slope, lowered to its minimum over the region, with its span narrowed: every
