@@ -14,6 +14,7 @@
 #include "engine/horizon/fast_angle.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/horizon/polar_geometry.hpp"
+#include "engine/horizon/quad_heap.hpp"
 #include "engine/horizon/object_space_horizon.hpp"
 #include "engine/spatial/quadtree.hpp"
 #include "generators/rapidcheck_gens.hpp"
@@ -74,6 +75,11 @@ RC_GTEST_PROP(OcclusionHorizon, AgreesWithPlainBinsAndKeepsInvariants, ()) {
         if (model.touches(b, span)) lowest = std::min(lowest, model.value[b]), highest = std::max(highest, model.value[b]);
       RC_ASSERT(horizon.min_over(span) == lowest);
       RC_ASSERT(horizon.max_over(span) == highest);
+      // hides() answers from block summaries where it can: the same answer as the full fold, at
+      // the lowest bin itself, just below it, at the highest and at a random slope.
+      const double random_slope = *rc::gen::inRange(-110, 110) / 10.0;
+      for (double slope : {lowest, std::nextafter(lowest, -HUGE_VAL), highest, random_slope})
+        RC_ASSERT(horizon.hides(span, slope) == (std::isfinite(slope) && slope < lowest));
     }
     RC_ASSERT(horizon.check_invariants() == "");
   }
@@ -86,6 +92,39 @@ RC_GTEST_PROP(OcclusionHorizon, AgreesWithPlainBinsAndKeepsInvariants, ()) {
   horizon.reset();
   RC_ASSERT(horizon.check_invariants() == "");
   RC_ASSERT(horizon.max_over({0.0, kTwoPi}) == -std::numeric_limits<double>::infinity());
+}
+
+// The sweeps' four-way heap pops in sorted order, whatever the pushes and pops between: items
+// with many equal distances, told apart by index as SweepItem does, against a sort of the same.
+RC_GTEST_PROP(QuadHeap, PopsInTheOrderOfASort, ()) {
+  struct Item {
+    int distance;
+    int index;
+    bool operator>(const Item& o) const { return distance != o.distance ? distance > o.distance : index > o.index; }
+    bool operator==(const Item& o) const { return distance == o.distance && index == o.index; }
+  };
+  QuadHeap<Item> heap;
+  std::vector<Item> model;  // what the heap holds
+  const int steps = *rc::gen::inRange(1, 400);
+  for (int step = 0, next = 0; step < steps; ++step) {
+    if (model.empty() || *rc::gen::inRange(0, 3) != 0) {
+      const Item item{*rc::gen::inRange(0, 20), next++};
+      heap.push(item);
+      model.push_back(item);
+    } else {
+      const auto least = std::min_element(model.begin(), model.end(), [](const Item& a, const Item& b) { return b > a; });
+      RC_ASSERT(heap.top() == *least);
+      heap.pop();
+      model.erase(least);
+    }
+    RC_ASSERT(heap.size() == model.size());
+  }
+  std::sort(model.begin(), model.end(), [](const Item& a, const Item& b) { return b > a; });
+  for (const Item& item : model) {
+    RC_ASSERT(heap.top() == item);
+    heap.pop();
+  }
+  RC_ASSERT(heap.empty());
 }
 
 // fast_atan2 (the spans' angles) stays within 2e-15 rad of libm's atan2, a thousandth of the

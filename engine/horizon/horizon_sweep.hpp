@@ -29,6 +29,7 @@
 #include "core/scene.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
 #include "engine/horizon/polar_geometry.hpp"
+#include "engine/horizon/quad_heap.hpp"
 #include "engine/method.hpp"
 #include "engine/spatial/quadtree.hpp"
 
@@ -60,7 +61,7 @@ struct Shadow {
 class ShadowQueue {
  public:
   void clear() {
-    queue_ = {};
+    queue_.clear();
     order_ = 0;
     replay_.clear();
     replay_next_ = 0;
@@ -103,7 +104,7 @@ class ShadowQueue {
     std::uint64_t order;  // insertion order, for a deterministic tie-break
     bool operator>(const Pending& o) const { return farthest != o.farthest ? farthest > o.farthest : order > o.order; }
   };
-  std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> queue_;
+  QuadHeap<Pending> queue_;
   std::uint64_t order_ = 0;
   std::vector<Shadow>* log_ = nullptr;
   std::vector<Shadow> replay_;  // sorted by farthest; merged from replay_next_ on
@@ -258,7 +259,7 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
   if (restrict_to_coverage) horizon.restrict_to(azimuth_coverage(camera));
   horizon.take_node_visits();
 
-  std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
+  QuadHeap<SweepItem> sweep;
   std::vector<std::optional<ConvexSpan>> spans;
   const auto& cells = quadtree.cells();
   if (!cells.empty() && cells[0].last > cells[0].first && !leave_out(false, 0u))

@@ -168,8 +168,32 @@ double OcclusionHorizon::max_over(const AzimuthSpan& span) {
   return read ? m : kAll;
 }
 
+// max_slope < min_over(span), answered from the block summaries where they settle it: a block
+// whose min lies above max_slope hides it over any part of the block, one whose max does not
+// cannot; only the blocks in between are read bin by bin, and the first bin range that fails
+// ends the test. The same answer as the full fold, at a fraction of the reads.
 bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) {
-  return std::isfinite(max_slope) && max_slope < min_over(span);
+  if (!std::isfinite(max_slope)) return false;
+  bool hidden = true;
+  const bool read = for_each_range(span, /*inner=*/false, [&](std::uint32_t first, std::uint32_t last) {
+    if (hidden) hidden = hides_bins(first, last, max_slope);
+  });
+  return read && hidden;
+}
+
+bool OcclusionHorizon::hides_bins(std::uint32_t first, std::uint32_t last, double max_slope) {
+  const std::uint32_t mask = (1u << block_shift_) - 1;
+  const std::uint32_t last_block = last >> block_shift_;
+  for (std::uint32_t block = first >> block_shift_; block <= last_block; ++block) {
+    ++visits_;
+    if (max_slope < block_min_[block]) continue;        // every bin of the block lies above
+    if (!(max_slope < block_max_[block])) return false;  // no bin of the block does
+    const std::uint32_t lo = std::max(first, block << block_shift_), hi = std::min(last, (block << block_shift_) | mask);
+    if ((lo & mask) == 0 && (hi & mask) == mask) return false;  // the whole block: its min decides
+    visits_ += hi - lo + 1;
+    if (!(max_slope < std::max(fold_run<MinFold>(bin_.data() + lo, hi - lo + 1), lift_[block]))) return false;
+  }
+  return true;
 }
 
 double OcclusionHorizon::bin_value(std::uint32_t bin) { return std::max(bin_[bin], lift_[bin >> block_shift_]); }

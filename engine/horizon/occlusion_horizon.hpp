@@ -111,6 +111,8 @@ class OcclusionHorizon {
  private:
   void raise_bins(std::uint32_t first, std::uint32_t last, double slope);
   double min_bins(std::uint32_t first, std::uint32_t last);
+  // Whether max_slope lies below every bin of [first, last] (hides() over one bin range).
+  bool hides_bins(std::uint32_t first, std::uint32_t last, double max_slope);
   double max_bins(std::uint32_t first, std::uint32_t last);
   // Raise or read bins [first, last] of one block, at least one of them and not every one.
   void raise_part(std::uint32_t block, std::uint32_t first, std::uint32_t last, double slope);
