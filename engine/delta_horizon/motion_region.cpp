@@ -289,7 +289,7 @@ void RegionCertificate::certify(const MotionRegion& region, CullStatistics& stat
   grown_.take_node_visits();
   uncertain_reach_.take_node_visits();
 
-  std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
+  QuadHeap<SweepItem> sweep;
   ShadowQueue pending_shrunk, pending_grown;
   std::vector<Candidate> candidates;
   // Visibility decisions wait until the sweep passes nearest + 2ε: (key, candidate index).

@@ -30,7 +30,7 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
   }
   std::vector<std::uint32_t> front;
   std::vector<std::optional<ConvexSpan>> spans;
-  std::priority_queue<SweepItem, std::vector<SweepItem>, std::greater<SweepItem>> sweep;
+  QuadHeap<SweepItem> sweep;
   ShadowQueue pending;
   // Both sweeps test a building the same way, against H(t+1) (step 2) or ΔH (steps 4-5); a
   // visible one joins the PVS and queues its shadows.
