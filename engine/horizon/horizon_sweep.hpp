@@ -245,11 +245,14 @@ inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building&
 //  - `cast_reads_spans`: false when `cast` ignores the spans (methods whose shadows come from
 //    occluders shrunk beforehand): a known building's CVP spans are then not computed at all.
 //  - `target_margin`: target_span's ε for the cells and buildings tested (0: OH(OS)'s tests).
+//  - `finish_horizon`: merge the shadows still waiting when the sweep ends, so that the horizon
+//    is the H(t) ΔH carries over; false for a sweep whose horizon nothing reads afterwards (the
+//    from-region sweeps: those shadows lie behind everything tested, issue 17's VbAoI graph).
 template <class Meets, class CastShadows, class Known, class LeaveOut>
 void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizon& horizon, const Camera& camera,
                    bool restrict_to_coverage, const Meets& meets, const CastShadows& cast, const Known& known,
                    const LeaveOut& leave_out, ShadowQueue& pending, CullResult& result, bool cast_reads_spans = true,
-                   double target_margin = 0.0) {
+                   double target_margin = 0.0, bool finish_horizon = true) {
   CullStatistics& stats = result.stats;
   const ViewVolume volume(camera);
   const Vec3 eye = camera.position;
@@ -300,7 +303,7 @@ void sweep_horizon(const Scene& scene, const Quadtree& quadtree, OcclusionHorizo
     result.pvs.push_back(building.id);
     cast(pending, item.index, eye, item.distance, unclipped, spans);
   }
-  pending.merge_all(horizon, stats);
+  if (finish_horizon) pending.merge_all(horizon, stats);
   stats.horizon_nodes = horizon.take_node_visits();
 }
 template <class Meets, class CastShadows, class Known>

@@ -46,7 +46,7 @@ std::vector<ObjectId> PassiveTargets::visible(const ViewRegion& region, const st
         if (is_target) return known && (*known)[i] != 0;
         return unknown_before_[cells[i].last] == unknown_before_[cells[i].first];
       },
-      pending, result);
+      pending, result, /*cast_reads_spans=*/false, /*target_margin=*/0.0, /*finish_horizon=*/false);
   result.stats.occluders_applied = 0;  // the replayed shadows: the building sweep counted them
   add_counts(stats, result.stats);
   std::sort(result.pvs.begin(), result.pvs.end());

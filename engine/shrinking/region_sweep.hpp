@@ -49,7 +49,7 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
         cast(queue, index, eye, distance, unclipped + reach, spans);
       },
       [&](std::uint32_t b) { return known && (*known)[b] != 0; }, [](bool, std::uint32_t) { return false; }, pending,
-      result, cast_reads_spans, narrow_targets ? region.radius : 0.0);
+      result, cast_reads_spans, narrow_targets ? region.radius : 0.0, /*finish_horizon=*/false);
   std::sort(result.pvs.begin(), result.pvs.end());
   if (passive) result.passive = passive->visible(region, log, known_passive, result.stats);
   result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
