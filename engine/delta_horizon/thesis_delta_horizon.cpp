@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
-#include <queue>
 
 #include "engine/horizon/horizon_sweep.hpp"
 

@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <queue>
 #include <vector>
 
 #include "core/camera.hpp"
