@@ -27,6 +27,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "oracle/view_transform.hpp"
 
@@ -323,7 +324,7 @@ Exact2dResult ExactVisibility2d::visible(const Camera& camera) const {
     with_eye.extend(eye);
     result = Impl(impl_->scene, with_eye).query(camera);  // an eye far outside the scene: a wider frame
   }
-  result.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.elapsed_seconds = seconds_since(start);
   return result;
 }
 

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/elapsed.hpp"
+
 namespace cullcheck::oracle {
 
 Oracle::Oracle(const Scene& scene) : scene_(scene), rays_(scene) {}
@@ -30,7 +32,7 @@ OracleAnswer Oracle::visible_set(const Camera& camera, const OracleOptions& opti
     answer.visible = answer.sampling->witnessed;
   }
   answer.why = applicability.reason;
-  answer.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  answer.elapsed_seconds = seconds_since(start);
   return answer;
 }
 

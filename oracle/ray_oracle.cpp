@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "oracle/embree_scene.hpp"
 #include "oracle/ray_plan.hpp"
@@ -237,7 +238,7 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   }
   im.give_back(std::move(scratch));
   for (const auto& [id, ray] : result.witnesses) result.witnessed.push_back(id);
-  result.elapsed_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.elapsed_seconds = seconds_since(start);
   return result;
 }
 
@@ -323,7 +324,7 @@ double RayOracle::bare_embree_rays_per_second(const RayLog& log, int threads, do
     worker(0, n / threads);
     for (auto& th : pool) th.join();
     ++passes;
-    seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    seconds = seconds_since(start);
   } while (seconds < min_seconds);
   return double(passes * log.rays.size()) / seconds;
 }

@@ -1,4 +1,5 @@
 #include "reports/claims.hpp"
+#include "core/elapsed.hpp"
 #include "core/parallel_indices.hpp"
 #include "core/progress.hpp"
 
@@ -230,7 +231,7 @@ std::vector<ClaimCheck> check_shadow_elevation_rule(const ClaimSearchOptions& op
       }
     }
     });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   published.search_seconds = corrected.search_seconds = seconds;
   return {published, corrected};
 }
@@ -281,7 +282,7 @@ std::vector<ClaimCheck> check_image_space_pitch_roll(const ClaimSearchOptions& o
       check(level, camera);
     }
     });
-  tilted.search_seconds = level.search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  tilted.search_seconds = level.search_seconds = seconds_since(start);
   return {tilted, level};
 }
 

@@ -1,4 +1,5 @@
 #include "reports/delta_claims.hpp"
+#include "core/elapsed.hpp"
 #include "core/progress.hpp"
 
 #include <algorithm>
@@ -117,7 +118,7 @@ std::vector<ClaimCheck> check_delta_horizon_claims(const ClaimSearchOptions& opt
       }
     }
     });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   published.search_seconds = guarded.search_seconds = seconds;
   return {published, guarded};
 }

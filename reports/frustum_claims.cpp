@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/elapsed.hpp"
 #include "reports/fuzzing.hpp"
 
 namespace cullcheck {
@@ -67,7 +68,7 @@ std::vector<ClaimCheck> check_frustum_range_claims(const ClaimSearchOptions& opt
                               " object(s) and " + std::to_string(f.minimal.path.frames.size()) + " frame(s) of a " + f.minimal.kind +
                               " path (from " + std::to_string(f.first_objects) + " and " + std::to_string(f.first_frames) + ")";
   });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   for (ClaimCheck& c : claims) c.search_seconds = seconds;
   return claims;
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iterator>
 
+#include "core/elapsed.hpp"
 #include "core/replay_text.hpp"
 #include "engine/online_image_space/online_culling.hpp"
 #include "generators/camera_moves.hpp"
@@ -125,7 +126,7 @@ std::vector<ClaimCheck> check_online_claims(const ClaimSearchOptions& options) {
       }
     }
   });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   published.search_seconds = corrected.search_seconds = union_leak.search_seconds = seconds;
   return {published, corrected, union_leak};
 }

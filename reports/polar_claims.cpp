@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "core/random.hpp"
 #include "core/replay_text.hpp"
@@ -63,7 +64,7 @@ std::vector<ClaimCheck> check_polar_claims(const ClaimSearchOptions& options) {
       }
     }
   });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   claims[0].search_seconds = seconds;
   return claims;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/elapsed.hpp"
 #include "core/sorted_sets.hpp"
 #include "engine/radar/radar_echo.hpp"
 #include "engine/radar/triangle_grid.hpp"
@@ -132,7 +133,7 @@ std::vector<ClaimCheck> check_radar_claims(const ClaimSearchOptions& options) {
       }
     }
   });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   for (ClaimCheck& c : claims) c.search_seconds = seconds;
   return claims;
 }

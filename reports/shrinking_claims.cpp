@@ -1,4 +1,5 @@
 #include "reports/shrinking_claims.hpp"
+#include "core/elapsed.hpp"
 #include "core/progress.hpp"
 
 #include <algorithm>
@@ -150,7 +151,7 @@ std::vector<ClaimCheck> check_shrinking_claims(const ClaimSearchOptions& options
       }
     }
     });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   std::vector<ClaimCheck> out;
   for (Variant& v : variants) {
     v.claim.search_seconds = seconds;

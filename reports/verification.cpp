@@ -1,5 +1,6 @@
 #include "reports/verification.hpp"
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "core/scene_timeline.hpp"
 #include "core/progress.hpp"
@@ -352,7 +353,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
       full = truth->pixels().render(camera, nullptr, options.oracle.sampling.threads);
       ++out.pixels.frames;
       out.pixels.rays += full->ids.size();
-      out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
+      out.pixels.seconds += seconds_since(pixel_start);
     }
     for (std::size_t m = 0; m < n; ++m) {
       if (!results[m]) continue;
@@ -368,7 +369,7 @@ PathVerification verify_path(const Scene& scene, const SceneSource& source, cons
         const auto pixel_start = std::chrono::steady_clock::now();
         pixel = truth->pixels().compare(*full, camera, pvs, options.oracle.sampling.threads);
         out.pixels.rays += pixel->misdrawn_pixels;
-        out.pixels.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - pixel_start).count();
+        out.pixels.seconds += seconds_since(pixel_start);
         run.misdrawn_pixels.push_back(static_cast<double>(pixel->misdrawn_pixels));
         run.blob_per_frame.push_back(pixel->largest_blob);
         run.pixel_frames.push_back(index);

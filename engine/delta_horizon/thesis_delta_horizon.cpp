@@ -4,6 +4,7 @@
 #include <chrono>
 #include <limits>
 
+#include "core/elapsed.hpp"
 #include "engine/horizon/horizon_sweep.hpp"
 
 namespace cullcheck {
@@ -94,7 +95,7 @@ CullResult ThesisDeltaHorizonCulling::cull(const Camera& camera) {
   front_ = std::move(front);
   stats.horizon_nodes = horizon_.take_node_visits() + delta_.take_node_visits();
   std::sort(result.pvs.begin(), result.pvs.end());
-  stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats.cull_ms = ms_since(start);
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "engine/frustum/range_detection.hpp"
 
+#include "core/elapsed.hpp"
 #include "engine/frustum/box_walk.hpp"
 
 #include <algorithm>
@@ -130,7 +131,7 @@ CullResult RangeDetectionCulling::cull(const Camera& camera) {
       },
       result);
   result.stats.bound_tests = tests;
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = ms_since(start);
   return result;
 }
 

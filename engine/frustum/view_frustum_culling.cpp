@@ -1,5 +1,6 @@
 #include "engine/frustum/view_frustum_culling.hpp"
 
+#include "core/elapsed.hpp"
 #include "engine/frustum/box_walk.hpp"
 
 #include <algorithm>
@@ -17,7 +18,7 @@ CullResult ViewFrustumCulling::cull(const Camera& camera) {
   const auto keep = [&volume](const Box3& box, auto...) { return volume.may_intersect(box); };
   walk_boxes(quadtree_, scene_, keep, keep, result);
   result.stats.bound_tests = result.stats.cells_tested + result.stats.buildings_tested;  // one box against the six planes each
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = ms_since(start);
   return result;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/elapsed.hpp"
+
 namespace cullcheck {
 
 ObjectSpaceHorizonCulling::ObjectSpaceHorizonCulling(const Scene& scene, ShadowRule rule, const MethodOptions& options)
@@ -17,7 +19,7 @@ CullResult ObjectSpaceHorizonCulling::cull(const Camera& camera) {
   CullResult result;
   sweep_horizon(scene_, quadtree_, horizon_, rule_, camera, result);
   std::sort(result.pvs.begin(), result.pvs.end());
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = ms_since(start);
   return result;
 }
 

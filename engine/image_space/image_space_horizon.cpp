@@ -10,6 +10,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/elapsed.hpp"
 #include "engine/horizon/polar_geometry.hpp"
 
 namespace cullcheck {
@@ -250,7 +251,7 @@ CullResult ImageSpaceHorizonCulling::cull(const Camera& camera) {
   }
   std::sort(result.pvs.begin(), result.pvs.end());
   stats.horizon_nodes = horizon_.take_node_visits();
-  stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats.cull_ms = ms_since(start);
   return result;
 }
 

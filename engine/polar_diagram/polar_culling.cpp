@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/elapsed.hpp"
 #include "engine/polar_diagram/exact_sign.hpp"
 
 namespace cullcheck {
@@ -73,7 +74,7 @@ CullResult PolarDiagramCulling::cull(const Camera& camera) {
   result.stats.cells_tested = fan.stats.cells_walked;
   result.stats.buildings_tested = fan.stats.vertices_tested + fan.stats.edges_tested;
   last_ = fan.stats;
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = ms_since(start);
   return result;
 }
 

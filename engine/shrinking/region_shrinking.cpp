@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/elapsed.hpp"
 #include "engine/horizon/horizon_sweep.hpp"
 #include "engine/shrinking/region_sweep.hpp"
 
@@ -179,7 +180,7 @@ CullResult CertifiedShadowShrinking::cull_region(const ViewRegion& region) {
   for (std::uint32_t b : certificate_.swept())
     if (!certificate_.certainly_visible(b)) result.pvs.push_back(scene_.buildings[b].id);
   std::sort(result.pvs.begin(), result.pvs.end());
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = ms_since(start);
   return result;
 }
 

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/elapsed.hpp"
 #include "engine/delta_horizon/motion_region.hpp"
 #include "engine/horizon/horizon_sweep.hpp"
 #include "engine/shrinking/passive_targets.hpp"
@@ -52,7 +53,7 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
       result, cast_reads_spans, narrow_targets ? region.radius : 0.0, /*finish_horizon=*/false);
   std::sort(result.pvs.begin(), result.pvs.end());
   if (passive) result.passive = passive->visible(region, log, known_passive, result.stats);
-  result.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.stats.cull_ms = ms_since(start);
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/elapsed.hpp"
 #include "engine/shrinking/circle_tiling.hpp"
 
 namespace cullcheck {
@@ -144,7 +145,7 @@ ViewCellResult ViewCellPvs::compute(const ViewCell& cell, double epsilon, CellSa
   std::sort(out.pvs.begin(), out.pvs.end());
   for (std::uint32_t t = 0; t < known_passive_.size(); ++t)
     if (known_passive_[t]) out.passive.push_back(t);
-  out.stats.cull_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  out.stats.cull_ms = ms_since(start);
   return out;
 }
 

@@ -1,4 +1,5 @@
 #include "engine/vbaoi/navigation_graph.hpp"
+#include "core/elapsed.hpp"
 #include "core/progress.hpp"
 #include "core/random.hpp"
 
@@ -152,7 +153,7 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
   }
   // Adding a neighbour A to B's list must add B to A's as well: neighbours are symmetric (checked
   // by graph_invariant_violations), so the second pass kept PVSn symmetric.
-  graph.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  graph.stats.build_seconds = seconds_since(start);
   return graph;
 }
 

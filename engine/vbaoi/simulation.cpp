@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "core/elapsed.hpp"
 #include "core/random.hpp"
 #include "engine/vbaoi/sight_filter.hpp"
 
@@ -180,7 +181,7 @@ class Simulation {
     // Expectations whose update never reached the server before the end are not counted.
     for (const Client& c : clients_) r_.clients_active += c.phase == Phase::active ? 1 : 0;
     r_.ticks = ticks_;
-    r_.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r_.wall_seconds = seconds_since(start);
     return std::move(r_);
   }
 
@@ -503,7 +504,7 @@ class Simulation {
     for (std::uint32_t c : active) eyes.push_back({clients_[c].pos.x, clients_[c].pos.y, graph_.options.eye_height});
     const auto start = std::chrono::steady_clock::now();
     const auto pairs = los_(eyes);
-    r_.line_of_sight_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r_.line_of_sight_seconds += seconds_since(start);
     ++r_.checked_ticks;
     checked_tick_[k] = 1;
     r_.pairs_checked += active.size() * (active.size() - 1) / 2;

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/elapsed.hpp"
 #include "core/scene_io.hpp"
 #include "engine/method.hpp"
 
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
     const cc::Camera camera = cc::camera_from_json_text(request["camera"].dump());
     const auto start = std::chrono::steady_clock::now();
     const cc::CullResult r = method->cull(camera);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double ms = cc::ms_since(start);
     std::cout << json{{"type", "visible"}, {"frame", request["frame"]}, {"ids", r.pvs}, {"cull_ms", ms}}.dump() << std::endl;
   }
   return 0;

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/elapsed.hpp"
 #include "generators/city.hpp"
 #include "generators/detailed_buildings.hpp"
 
@@ -71,7 +72,7 @@ TEST(DetailedBuildings, TheDefaultLayoutMakesACityOfMillionsOfTriangles) {
   p.layout = default_city_params();
   const auto start = std::chrono::steady_clock::now();
   const Scene city = detailed_city(p, 1);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   std::size_t triangles = 0;
   for (const MeshObject& m : city.meshes) triangles += m.triangles.size();
   std::printf("detailed default city: %zu buildings, %zu triangles in %.2f s\n", city.meshes.size(), triangles, seconds);

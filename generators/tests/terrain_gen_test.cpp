@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <set>
 
+#include "core/elapsed.hpp"
 #include "core/errors.hpp"
 #include "generators/terrain_gen.hpp"
 
@@ -70,7 +71,7 @@ TEST(TerrainGen, RidgesFoldTheFieldAboutItsMiddle) {
 TEST(TerrainGen, TheThesisTerrainIsItsSizeAndComesInSeconds) {
   const auto start = std::chrono::steady_clock::now();
   const Terrain t = generate_terrain(thesis_terrain_params(), 1);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = seconds_since(start);
   std::printf("the thesis's terrain: %zu triangles, %.1f x %.1f km, generated in %.2f s\n", t.triangle_count(),
               (t.nx - 1) * t.dx / 1000, (t.ny - 1) * t.dy / 1000, seconds);
   EXPECT_EQ(t.triangle_count(), 4959000u);  // "about 4.96 million triangles"
