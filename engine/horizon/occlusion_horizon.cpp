@@ -93,7 +93,7 @@ OcclusionHorizon::OcclusionHorizon(std::uint32_t bins) : bins_(bins), bin_width_
 void OcclusionHorizon::reset() {
   const std::uint32_t size = 1u << block_shift_;
   for (std::uint32_t block : dirty_) {
-    std::fill_n(bin_.begin() + (static_cast<std::size_t>(block) << block_shift_), size, kNone);
+    if (dirty_flag_[block] == kBinsWritten) std::fill_n(bin_.begin() + (static_cast<std::size_t>(block) << block_shift_), size, kNone);
     lift_[block] = block_min_[block] = block_max_[block] = kNone;
     dirty_flag_[block] = 0;
   }
@@ -216,7 +216,7 @@ void OcclusionHorizon::assign(const std::vector<double>& values) {
     lift_[block] = kNone;
     block_min_[block] = fold_run<MinFold>(v, size);
     block_max_[block] = fold_run<MaxFold>(v, size);
-    touch(block);
+    touch(block, kBinsWritten);
   }
   visits_ += bins_;
 }
@@ -230,7 +230,7 @@ std::uint64_t OcclusionHorizon::take_node_visits() {
 void OcclusionHorizon::raise_block(std::uint32_t block, double slope) {
   ++visits_;
   if (slope <= block_min_[block]) return;  // already at least this high everywhere in it
-  touch(block);
+  touch(block, kLifted);
   lift_[block] = std::max(lift_[block], slope);
   block_min_[block] = std::max(block_min_[block], slope);
   block_max_[block] = std::max(block_max_[block], slope);
@@ -239,7 +239,7 @@ void OcclusionHorizon::raise_block(std::uint32_t block, double slope) {
 void OcclusionHorizon::raise_part(std::uint32_t block, std::uint32_t first, std::uint32_t last, double slope) {
   ++visits_;
   if (slope <= block_min_[block]) return;
-  touch(block);
+  touch(block, kBinsWritten);
   raise_all(bin_.data() + first, last - first + 1, slope);
   const std::uint32_t size = 1u << block_shift_;
   block_min_[block] = std::max(fold_run<MinFold>(bin_.data() + (static_cast<std::size_t>(block) << block_shift_), size), lift_[block]);
@@ -304,6 +304,9 @@ std::string OcclusionHorizon::check_invariants() const {
     if (block_max_[block] != hi)
       return "block " + std::to_string(block) + ": max " + std::to_string(block_max_[block]) + " differs from its bins'";
     if (block_max_[block] != kNone && !dirty_flag_[block]) return "block " + std::to_string(block) + ": raised but not marked for reset";
+    if (dirty_flag_[block] != kBinsWritten)
+      for (std::uint32_t i = 0; i < size; ++i)
+        if (v[i] != kNone) return "block " + std::to_string(block) + ": a bin written but the block not marked for refilling";
   }
   return {};
 }

@@ -27,6 +27,7 @@
 // to an integer before it is known to be a finite bin index in range.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -117,10 +118,13 @@ class OcclusionHorizon {
   // Raise or read bins [first, last] of one block, at least one of them and not every one.
   void raise_part(std::uint32_t block, std::uint32_t first, std::uint32_t last, double slope);
   void raise_block(std::uint32_t block, double slope);
-  void touch(std::uint32_t block) {
-    if (dirty_flag_[block]) return;
-    dirty_flag_[block] = 1;
-    dirty_.push_back(block);
+  // Marks a block for reset: kLifted when only its summaries and lift were written, kBinsWritten
+  // when its bins were too (reset then refills them; a restricted view's dozens of lifted blocks
+  // cost four values each instead of a block of bins).
+  static constexpr std::uint8_t kLifted = 1, kBinsWritten = 2;
+  void touch(std::uint32_t block, std::uint8_t how) {
+    if (dirty_flag_[block] == 0) dirty_.push_back(block);
+    dirty_flag_[block] = std::max(dirty_flag_[block], how);
   }
   // Calls f(first, last) for the one or two non-wrapping bin ranges of a span; returns whether
   // it called f at all (false for an invalid span or an empty rounding).
@@ -135,7 +139,7 @@ class OcclusionHorizon {
   // those values over the block.
   std::vector<double> bin_, lift_, block_min_, block_max_;
   // Blocks written since the last reset, so that reset costs what the query touched, not the
-  // whole horizon.
+  // whole horizon; dirty_flag_ says how (touch).
   std::vector<std::uint32_t> dirty_;
   std::vector<std::uint8_t> dirty_flag_;
   std::uint64_t visits_ = 0;
