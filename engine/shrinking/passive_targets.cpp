@@ -1,6 +1,8 @@
 #include "engine/shrinking/passive_targets.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -20,21 +22,48 @@ Scene checked(Scene targets) {
 }  // namespace
 
 PassiveTargets::PassiveTargets(Scene targets, const MethodOptions& options)
-    : scene_(checked(std::move(targets))), quadtree_(scene_, options.quadtree_leaf_size), horizon_(options.horizon_bins) {}
+    : scene_(checked(std::move(targets))), quadtree_(scene_, options.quadtree_leaf_size), horizon_(options.horizon_bins) {
+  if (!scene_.buildings.empty()) {
+    const double h = scene_.buildings.front().height;
+    bool uniform = std::isfinite(h);
+    for (const Building& b : scene_.buildings) {
+      uniform = uniform && b.height == h;
+      for (const ConvexVerticalPrism& prism : b.prisms) uniform = uniform && prism.height == h;
+    }
+    if (uniform) common_height_ = h;
+  }
+}
 
 std::vector<ObjectId> PassiveTargets::visible(const ViewRegion& region, const std::vector<Shadow>& shadows,
                                               const std::vector<char>* known, CullStatistics& stats) {
-  ShadowQueue pending;
-  pending.replay(shadows);
-  // Targets already held are left out, and so is every cell holding only such targets: a target
-  // casts no shadow, so nothing else depends on them (issue 17: a view cell's later samples then
-  // sweep only what is still unknown). unknown_before_[k]: unknown targets among the first k in
-  // the quadtree's order, so a cell's count is a difference.
+  if (region.camera.position.z == common_height_) {
+    count_unknown(known);
+    CullStatistics fast_stats;
+    if (auto fast = visible_at_eye_height(region, shadows, known, fast_stats)) {
+      add_counts(stats, fast_stats);
+      return std::move(*fast);
+    }
+  }
+  return visible_by_sweep(region, shadows, known, stats);
+}
+
+// Targets already held are left out, and so is every cell holding only such targets: a target
+// casts no shadow, so nothing else depends on them (issue 17: a view cell's later samples then
+// sweep only what is still unknown). unknown_before_[k]: unknown targets among the first k in
+// the quadtree's order, so a cell's count is a difference.
+void PassiveTargets::count_unknown(const std::vector<char>* known) {
   const auto& order = quadtree_.buildings();
   unknown_before_.resize(order.size() + 1);
   unknown_before_[0] = 0;
   for (std::size_t k = 0; k < order.size(); ++k)
     unknown_before_[k + 1] = unknown_before_[k] + (known && (*known)[order[k]] != 0 ? 0u : 1u);
+}
+
+std::vector<ObjectId> PassiveTargets::visible_by_sweep(const ViewRegion& region, const std::vector<Shadow>& shadows,
+                                                       const std::vector<char>* known, CullStatistics& stats) {
+  count_unknown(known);
+  ShadowQueue pending;
+  pending.replay(shadows);
   const auto& cells = quadtree_.cells();
   CullResult result;
   sweep_horizon(
@@ -51,6 +80,101 @@ std::vector<ObjectId> PassiveTargets::visible(const ViewRegion& region, const st
   add_counts(stats, result.stats);
   std::sort(result.pvs.begin(), result.pvs.end());
   return result.pvs;
+}
+
+// The sweep above, for an eye at the targets' common height (the VbAoI graph's case: avatars'
+// eyes at the eyes' height), without its order. Every target, box and cell then reaches exactly
+// the eye's height, so its highest slope is 0 (NaN at zero distance, which hides nothing), and
+// the sweep hides an item popped at distance d iff every bin it reads is above 0 in H_<d: iff
+// each such bin is covered by a positive shadow whose farthest point is nearer than d. That
+// depends only on the nearest such shadow per bin, D(b): hidden iff max D over the bins < d.
+// -D is kept in an OcclusionHorizon (a raise keeps the maximum, so raising by -farthest keeps
+// the minimum farthest), with the same bin rounding as the sweep's raises and tests; the test is
+// hides(span, -d), or for d = +inf (every finite shadow merged) whether every bin is covered.
+// With no order left, the log is raised once unsorted and the targets' quadtree is walked
+// depth first: no queue, no sort. An item whose slope comes out finite and nonzero (some
+// target not at the common height after all) or whose distance is NaN (the sweep's order is
+// then the queue's business) sends the call back to the sweep: nullopt.
+std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const ViewRegion& region,
+                                                                          const std::vector<Shadow>& shadows,
+                                                                          const std::vector<char>* known,
+                                                                          CullStatistics& stats) {
+  horizon_.reset();
+  horizon_.take_node_visits();
+  for (const Shadow& s : shadows)
+    if (s.slope > 0.0) horizon_.raise(s.span, -s.farthest);
+  const ViewVolume volume(region.camera);
+  const Vec3 eye = region.camera.position;
+  const Vec2 e = plan(eye);
+  bool fallback = false;
+  // Whether the sweep would hide an item of highest slope `slope` over `span`, popped at `d`.
+  auto hidden = [&](const AzimuthSpan& span, double slope, double d) {
+    if (!std::isfinite(slope)) return false;
+    if (slope != 0.0) {
+      fallback = true;
+      return false;
+    }
+    return d < HUGE_VAL ? horizon_.hides(span, -d) : horizon_.min_over(span) > -HUGE_VAL;
+  };
+  auto box_hidden_at = [&](const Box2& box, double top, double d) {
+    const auto span = box_span(box, e);
+    if (!span) return false;
+    const double farthest = max_distance(e, box);
+    return hidden(span->span, max_slope(top, eye.z, min_distance(e, box), farthest), d);
+  };
+  const auto& cells = quadtree_.cells();
+  std::vector<ObjectId> out;
+  std::vector<std::uint32_t> stack;
+  if (!cells.empty() && cells[0].last > cells[0].first && unknown_before_[cells[0].last] != unknown_before_[cells[0].first])
+    stack.push_back(0);
+  while (!stack.empty() && !fallback) {
+    const Quadtree::Cell& cell = cells[stack.back()];
+    stack.pop_back();
+    ++stats.cells_tested;
+    const double d = min_distance(e, cell.bounds);
+    if (std::isnan(d)) return std::nullopt;
+    const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
+    if (!may_meet(volume, box, region.radius, region.turn)) continue;
+    if (box_hidden_at(cell.tall_bounds, cell.max_height, d) &&
+        (!cell.has_rest() || box_hidden_at(cell.bounds, cell.rest_height, d)))
+      continue;
+    quadtree_.for_each_child(
+        cell,
+        [&](std::uint32_t c) {
+          if (unknown_before_[cells[c].last] != unknown_before_[cells[c].first]) stack.push_back(c);
+        },
+        [&](std::uint32_t t) {
+          if (fallback || (known && (*known)[t] != 0)) return;
+          const Building& target = scene_.buildings[t];
+          ++stats.buildings_tested;
+          const double dt = min_distance(e, target.bounds.plan());
+          if (std::isnan(dt)) {
+            fallback = true;
+            return;
+          }
+          if (!may_meet(volume, target.bounds, region.radius, region.turn) ||
+              box_hidden_at(target.bounds.plan(), target.height, dt))
+            return;
+          bool seen = false;
+          for (const ConvexVerticalPrism& prism : target.prisms) {
+            const auto span = convex_span(prism.ring, e);
+            if (!span) {
+              seen = true;
+              break;
+            }
+            const double farthest = max_vertex_distance(prism.ring, e);
+            if (!hidden(span->span, max_slope(prism.height, eye.z, min_boundary_distance(prism.ring, e), farthest), dt)) {
+              seen = true;
+              break;
+            }
+          }
+          if (seen) out.push_back(target.id);
+        });
+  }
+  if (fallback) return std::nullopt;
+  stats.horizon_nodes += horizon_.take_node_visits();
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace cullcheck
