@@ -143,7 +143,7 @@ class RegionCullingMethod {
   // method accepts it without its horizon tests and casts its shadows, which leaves the union
   // unchanged (horizon_sweep.hpp) and saves the tests. The default ignores `known`.
   // `known_passive[i]` marks passive target i as held: it is left out of the sweep (it casts no
-  // shadow) and of CullResult::passive.
+  // shadow) and of CullResult::passive. CullResult::pvs may come unsorted (only its union counts).
   virtual CullResult cull_region_carrying(const ViewRegion& region, const std::vector<char>& /*known*/,
                                           const std::vector<char>* /*known_passive*/ = nullptr) {
     return cull_region(region);
