@@ -71,3 +71,67 @@ TEST(RegionCertificate, DefaultCityFirstRegionPinned) {
 
 }  // namespace
 }  // namespace cullcheck
+
+namespace cullcheck {
+namespace {
+
+// meets_every_box (the from-region sweeps skip may_meet when it holds): whenever it holds for an
+// extent, may_meet holds for every box inside it, drawn down to boxes at the extent's far corner
+// and around the eye; it holds for a city-sized extent under the default far plane (counted),
+// and not once the far plane comes within twice the far corner's L1 distance, nor for a camera
+// that is not all-round.
+TEST(MeetsEveryBox, ImpliesMayMeetForEveryBoxInside) {
+  int held = 0, refused = 0;
+  const PropertyOutcome outcome = run_property("MeetsEveryBox.ImpliesMayMeetForEveryBoxInside", 300, true, [&] {
+    auto coordinate = [] { return *rc::gen::inRange(-2000000, 2000000) / 1000.0; };
+    Box3 extent;
+    for (int k = 0; k < 2; ++k) extent.extend({coordinate(), coordinate(), *rc::gen::inRange(-5000, 80000) / 1000.0});
+    Camera camera;
+    camera.hfov = kTwoPi;
+    camera.position = {coordinate(), coordinate(), *rc::gen::inRange(0, 3000) / 1000.0};
+    camera.far = *rc::gen::element(100000.0, 10000.0, 3000.0, 500.0);
+    const double reach = *rc::gen::element(0.0, 1.4142135623730951, 50.0);
+    const ViewVolume volume(camera);
+    if (!meets_every_box(volume, extent, reach)) {
+      ++refused;
+      return;
+    }
+    ++held;
+    for (int b = 0; b < 20; ++b) {
+      auto inside = [&](double lo, double hi) { return lo + (hi - lo) * (*rc::gen::inRange(0, 1001) / 1000.0); };
+      Box3 box;
+      const bool corner = b == 0;
+      box.extend({corner ? extent.lo.x : inside(extent.lo.x, extent.hi.x), corner ? extent.lo.y : inside(extent.lo.y, extent.hi.y),
+                  corner ? extent.lo.z : inside(extent.lo.z, extent.hi.z)});
+      box.extend({corner ? extent.lo.x : inside(extent.lo.x, extent.hi.x), corner ? extent.lo.y : inside(extent.lo.y, extent.hi.y),
+                  corner ? extent.lo.z : inside(extent.lo.z, extent.hi.z)});
+      RC_ASSERT(may_meet(volume, box, reach, 0.0));
+    }
+  });
+  ASSERT_TRUE(outcome.held);
+  if (reproducing()) return;
+  EXPECT_GE(held, outcome.cases / 10);
+  EXPECT_GE(refused, outcome.cases / 10);
+
+  // A 4 km city under the default 100 km far plane, an eye inside it: holds.
+  Camera camera;
+  camera.hfov = kTwoPi;
+  camera.position = {100.0, 200.0, 1.7};
+  Box3 city;
+  city.extend({-2000.0, -2000.0, 0.0});
+  city.extend({2000.0, 2000.0, 120.0});
+  EXPECT_TRUE(meets_every_box(ViewVolume(camera), city, 1.4142135623730951));
+  // The far plane within twice the far corner's L1 distance (2,100 + 2,200 + 118.3 m): not.
+  camera.far = 8000.0;
+  EXPECT_FALSE(meets_every_box(ViewVolume(camera), city, 1.4142135623730951));
+  camera.far = 9000.0;
+  EXPECT_TRUE(meets_every_box(ViewVolume(camera), city, 1.4142135623730951));
+  // A frustum, or a negative reach: never.
+  camera.hfov = 1.2;
+  EXPECT_FALSE(meets_every_box(ViewVolume(camera), city, 1.4142135623730951));
+  camera.hfov = kTwoPi;
+  EXPECT_FALSE(meets_every_box(ViewVolume(camera), city, -1.0));
+}
+
+}  // namespace
+}  // namespace cullcheck

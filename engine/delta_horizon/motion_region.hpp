@@ -59,6 +59,11 @@ struct MotionRegion {
 // every such camera culls it.
 bool certainly_meets(const ViewVolume& volume, const Box3& box, double reach, double turn);
 bool may_meet(const ViewVolume& volume, const Box3& box, double reach, double turn);
+// True when may_meet(volume, box, reach, turn) holds for every box within `extent`, as it does
+// for an all-round volume whose far plane lies beyond twice the L1 distance to the extent's
+// farthest corner (may_meet's own shortcut, taken at that corner; the offsets it adds only shrink
+// for a box inside). A sweep then skips the test (issue 17: 4% of a VbAoI graph).
+bool meets_every_box(const ViewVolume& volume, const Box3& extent, double reach);
 
 class RegionCertificate {
  public:

@@ -40,9 +40,12 @@ CullResult sweep_region(const Scene& scene, const Quadtree& quadtree, OcclusionH
   ShadowQueue pending;
   std::vector<Shadow> log;
   if (passive) pending.record_into(&log);
+  const bool every_box_meets = meets_every_box(ViewVolume(region.camera), quadtree.extent(), region.radius);
   sweep_horizon(
       scene, quadtree, horizon, region.camera, /*restrict_to_coverage=*/false,
-      [&](const ViewVolume& volume, const Box3& box) { return may_meet(volume, box, region.radius, region.turn); },
+      [&](const ViewVolume& volume, const Box3& box) {
+        return every_box_meets || may_meet(volume, box, region.radius, region.turn);
+      },
       // The near-plane guard for every eye of the disc, not the centre's alone: a CVP nearer
       // than the centre's unclipped distance + ε may lie in front of another eye's near plane,
       // and clipped geometry hides nothing (properties/region_drawn_scenes_test.cpp).

@@ -15,6 +15,9 @@ Quadtree::Quadtree(const Scene& scene, std::uint32_t leaf_size, std::uint32_t ma
     order_[i] = i;
     centres_[i] = scene.buildings[i].bounds.plan().center();
     square.extend(centres_[i]);
+    const Box3& b = scene.buildings[i].bounds;
+    extent_.extend({b.lo.x, b.lo.y, std::min(b.lo.z, 0.0)});
+    extent_.extend(b.hi);
   }
   if (n == 0) square = {{0, 0}, {0, 0}};
   const double side = std::max(square.hi.x - square.lo.x, square.hi.y - square.lo.y);

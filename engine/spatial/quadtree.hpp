@@ -41,6 +41,9 @@ class Quadtree {
   Quadtree(const Scene& scene, std::uint32_t leaf_size = 8, std::uint32_t max_depth = 24);
 
   const std::vector<Cell>& cells() const { return cells_; }  // cells()[0] is the root
+  // Every building's bounds and the ground (z = 0) under them: each box a sweep tests (a
+  // building's, or a cell's from the ground to its highest building) lies within it.
+  const Box3& extent() const { return extent_; }
   // Scene building indices, ordered so that each cell's buildings are contiguous.
   const std::vector<std::uint32_t>& buildings() const { return order_; }
   // Calls on_cell(child index) for each non-empty child of an inner cell, or on_building(scene
@@ -64,6 +67,7 @@ class Quadtree {
   // Sorts the cell's range of by_height_ (merging its children's sorted runs), then splits.
   void split_by_height(std::uint32_t cell, const Scene& scene);
   std::vector<Cell> cells_;
+  Box3 extent_;
   std::vector<std::uint32_t> order_;
   std::vector<Vec2> centres_;
   // During the build: each built cell's buildings, tallest first, in the cell's range of order_
