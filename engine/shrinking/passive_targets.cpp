@@ -104,6 +104,8 @@ std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const
   for (const Shadow& s : shadows)
     if (s.slope > 0.0) horizon_.raise(s.span, -s.farthest);
   const ViewVolume volume(region.camera);
+  const bool every_box_meets = meets_every_box(volume, quadtree_.extent(), region.radius);
+  auto meets = [&](const Box3& box) { return every_box_meets || may_meet(volume, box, region.radius, region.turn); };
   const Vec3 eye = region.camera.position;
   const Vec2 e = plan(eye);
   bool fallback = false;
@@ -134,7 +136,7 @@ std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const
     const double d = min_distance(e, cell.bounds);
     if (std::isnan(d)) return std::nullopt;
     const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-    if (!may_meet(volume, box, region.radius, region.turn)) continue;
+    if (!meets(box)) continue;
     if (box_hidden_at(cell.tall_bounds, cell.max_height, d) &&
         (!cell.has_rest() || box_hidden_at(cell.bounds, cell.rest_height, d)))
       continue;
@@ -152,7 +154,7 @@ std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const
             fallback = true;
             return;
           }
-          if (!may_meet(volume, target.bounds, region.radius, region.turn) ||
+          if (!meets(target.bounds) ||
               box_hidden_at(target.bounds.plan(), target.height, dt))
             return;
           bool seen = false;
