@@ -146,20 +146,25 @@ inline AzimuthSpan target_span(const AzimuthSpan& span, double margin, double fa
 // a box (cell or building bounds, standing on the ground up to `top`) is hidden when its highest
 // slope lies below the horizon over its azimuth span; a box that contains the eye is not.
 // `span` is box_span(box, plan(eye)), however the caller found it. `margin`: target_span's.
-inline bool box_hidden(OcclusionHorizon& horizon, const std::optional<ConvexSpan>& span, const Box2& box, double top,
-                       Vec3 eye, double margin = 0.0) {
+// `Horizon` is an OcclusionHorizon, or anything that answers hides(span, slope) as it would (the
+// passive targets' test without the sweep's order, engine/shrinking/passive_targets.cpp).
+template <class Horizon>
+bool box_hidden(Horizon& horizon, const std::optional<ConvexSpan>& span, const Box2& box, double top, Vec3 eye,
+                double margin = 0.0) {
   if (!span) return false;
   const Vec2 e = plan(eye);
   const double farthest = max_distance(e, box);
   return horizon.hides(target_span(span->span, margin, farthest), max_slope(top, eye.z, min_distance(e, box), farthest));
 }
-inline bool box_hidden(OcclusionHorizon& horizon, const Box2& box, double top, Vec3 eye, double margin = 0.0) {
+template <class Horizon>
+bool box_hidden(Horizon& horizon, const Box2& box, double top, Vec3 eye, double margin = 0.0) {
   return box_hidden(horizon, box_span(box, plan(eye)), box, top, eye, margin);
 }
 // A quadtree cell is hidden when both boxes of its height split are (Quadtree::Cell): its tall
 // buildings' box up to the tallest, and the whole cell up to the others' height. Sharper than
 // the whole cell up to the tallest, and as conservative: every building lies in one of them.
-inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, Vec3 eye, double margin = 0.0) {
+template <class Horizon>
+bool cell_hidden(Horizon& horizon, const Quadtree::Cell& cell, Vec3 eye, double margin = 0.0) {
   return box_hidden(horizon, cell.tall_bounds, cell.max_height, eye, margin) &&
          (!cell.has_rest() || box_hidden(horizon, cell.bounds, cell.rest_height, eye, margin));
 }
@@ -168,8 +173,8 @@ inline bool cell_hidden(OcclusionHorizon& horizon, const Quadtree::Cell& cell, V
 // `span_of(p)`, `nearest_of(p)` and `farthest_of(p)` are convex_span, min_boundary_distance and
 // max_vertex_distance of CVP p from the eye, however the caller finds them (the guarded ΔH reads
 // them off vertices fixed for its region).
-template <class SpanOf, class NearestOf, class FarthestOf>
-bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
+template <class Horizon, class SpanOf, class NearestOf, class FarthestOf>
+bool prisms_visible(Horizon& horizon, const Building& building, Vec3 eye,
                     std::vector<std::optional<ConvexSpan>>& spans, const SpanOf& span_of, const NearestOf& nearest_of,
                     const FarthestOf& farthest_of, double margin = 0.0) {
   spans.clear();
@@ -187,8 +192,9 @@ bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 ey
   }
   return visible;
 }
-inline bool prisms_visible(OcclusionHorizon& horizon, const Building& building, Vec3 eye,
-                           std::vector<std::optional<ConvexSpan>>& spans, double margin = 0.0) {
+template <class Horizon>
+bool prisms_visible(Horizon& horizon, const Building& building, Vec3 eye, std::vector<std::optional<ConvexSpan>>& spans,
+                    double margin = 0.0) {
   const Vec2 e = plan(eye);
   return prisms_visible(
       horizon, building, eye, spans, [&](std::size_t p) { return convex_span(building.prisms[p].ring, e); },

@@ -91,10 +91,32 @@ std::vector<ObjectId> PassiveTargets::visible_by_sweep(const ViewRegion& region,
 // -D is kept in an OcclusionHorizon (a raise keeps the maximum, so raising by -farthest keeps
 // the minimum farthest), with the same bin rounding as the sweep's raises and tests; the test is
 // hides(span, -d), or for d = +inf (every finite shadow merged) whether every bin is covered.
-// With no order left, the log is raised once unsorted and the targets' quadtree is walked
-// depth first: no queue, no sort. An item whose slope comes out finite and nonzero (some
-// target not at the common height after all) or whose distance is NaN (the sweep's order is
-// then the queue's business) sends the call back to the sweep: nullopt.
+// The items are tested by the sweep's own cell_hidden, box_hidden and prisms_visible, handed
+// NearestShadows for the horizon. With no order left, the log is raised once unsorted and the
+// targets' quadtree is walked depth first: no queue, no sort. An item whose slope comes out
+// finite and nonzero (some target not at the common height after all) or whose distance is NaN
+// (the sweep's order is then the queue's business) sends the call back to the sweep: nullopt.
+namespace {
+
+// hides(span, slope) as the sweep's horizon answers it for an item popped at `d`, read off the
+// nearest positive shadow per bin (negated in `nearest`); `fallback` is set when the slope is
+// finite and nonzero, where that reading does not apply.
+struct NearestShadows {
+  OcclusionHorizon& nearest;
+  double d = 0.0;
+  bool fallback = false;
+  bool hides(const AzimuthSpan& span, double slope) {
+    if (!std::isfinite(slope)) return false;
+    if (slope != 0.0) {
+      fallback = true;
+      return false;
+    }
+    return d < HUGE_VAL ? nearest.hides(span, -d) : nearest.min_over(span) > -HUGE_VAL;
+  }
+};
+
+}  // namespace
+
 std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const ViewRegion& region,
                                                                           const std::vector<Shadow>& shadows,
                                                                           const std::vector<char>* known,
@@ -108,72 +130,42 @@ std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const
   auto meets = [&](const Box3& box) { return every_box_meets || may_meet(volume, box, region.radius, region.turn); };
   const Vec3 eye = region.camera.position;
   const Vec2 e = plan(eye);
-  bool fallback = false;
-  // Whether the sweep would hide an item of highest slope `slope` over `span`, popped at `d`.
-  auto hidden = [&](const AzimuthSpan& span, double slope, double d) {
-    if (!std::isfinite(slope)) return false;
-    if (slope != 0.0) {
-      fallback = true;
-      return false;
-    }
-    return d < HUGE_VAL ? horizon_.hides(span, -d) : horizon_.min_over(span) > -HUGE_VAL;
-  };
-  auto box_hidden_at = [&](const Box2& box, double top, double d) {
-    const auto span = box_span(box, e);
-    if (!span) return false;
-    const double farthest = max_distance(e, box);
-    return hidden(span->span, max_slope(top, eye.z, min_distance(e, box), farthest), d);
-  };
+  NearestShadows test{horizon_};
   const auto& cells = quadtree_.cells();
   std::vector<ObjectId> out;
   std::vector<std::uint32_t> stack;
+  std::vector<std::optional<ConvexSpan>> spans;
   if (!cells.empty() && cells[0].last > cells[0].first && unknown_before_[cells[0].last] != unknown_before_[cells[0].first])
     stack.push_back(0);
-  while (!stack.empty() && !fallback) {
+  while (!stack.empty() && !test.fallback) {
     const Quadtree::Cell& cell = cells[stack.back()];
     stack.pop_back();
     ++stats.cells_tested;
-    const double d = min_distance(e, cell.bounds);
-    if (std::isnan(d)) return std::nullopt;
+    test.d = min_distance(e, cell.bounds);
+    if (std::isnan(test.d)) return std::nullopt;
     const Box3 box{{cell.bounds.lo.x, cell.bounds.lo.y, 0.0}, {cell.bounds.hi.x, cell.bounds.hi.y, cell.max_height}};
-    if (!meets(box)) continue;
-    if (box_hidden_at(cell.tall_bounds, cell.max_height, d) &&
-        (!cell.has_rest() || box_hidden_at(cell.bounds, cell.rest_height, d)))
-      continue;
+    if (!meets(box) || cell_hidden(test, cell, eye)) continue;
     quadtree_.for_each_child(
         cell,
         [&](std::uint32_t c) {
           if (unknown_before_[cells[c].last] != unknown_before_[cells[c].first]) stack.push_back(c);
         },
         [&](std::uint32_t t) {
-          if (fallback || (known && (*known)[t] != 0)) return;
+          if (test.fallback || (known && (*known)[t] != 0)) return;
           const Building& target = scene_.buildings[t];
           ++stats.buildings_tested;
-          const double dt = min_distance(e, target.bounds.plan());
-          if (std::isnan(dt)) {
-            fallback = true;
+          test.d = min_distance(e, target.bounds.plan());
+          if (std::isnan(test.d)) {
+            test.fallback = true;
             return;
           }
-          if (!meets(target.bounds) ||
-              box_hidden_at(target.bounds.plan(), target.height, dt))
+          if (!meets(target.bounds) || box_hidden(test, target.bounds.plan(), target.height, eye) ||
+              !prisms_visible(test, target, eye, spans))
             return;
-          bool seen = false;
-          for (const ConvexVerticalPrism& prism : target.prisms) {
-            const auto span = convex_span(prism.ring, e);
-            if (!span) {
-              seen = true;
-              break;
-            }
-            const double farthest = max_vertex_distance(prism.ring, e);
-            if (!hidden(span->span, max_slope(prism.height, eye.z, min_boundary_distance(prism.ring, e), farthest), dt)) {
-              seen = true;
-              break;
-            }
-          }
-          if (seen) out.push_back(target.id);
+          out.push_back(target.id);
         });
   }
-  if (fallback) return std::nullopt;
+  if (test.fallback) return std::nullopt;
   stats.horizon_nodes += horizon_.take_node_visits();
   std::sort(out.begin(), out.end());
   return out;
