@@ -40,7 +40,7 @@ struct UnitResult {
 // A thread's scratch: the rays of the unit in hand, and per object (and triangle) how many
 // witnesses this unit has found so far, reset through the lists of entries touched.
 struct Sifter {
-  std::vector<PlannedRay> rays;
+  UnitRays unit;
   SurfaceSamples samples;
   std::vector<std::uint8_t> found;
   std::vector<std::uint8_t> triangle_found;
@@ -119,24 +119,20 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   // object its first hit lies on when that hit (recomputed in double precision) is in the view
   // volume.
   auto sift = [&](Sifter& s, UnitResult& out, std::size_t begin, std::size_t end) {
-    RayLog::Ray packet[EmbreeScene::kPacket];
     EmbreeHit hits[EmbreeScene::kPacket];
     for (std::size_t first = begin; first < end; first += EmbreeScene::kPacket) {
       const std::size_t n = std::min(EmbreeScene::kPacket, end - first);
-      for (std::size_t i = 0; i < n; ++i) {
-        const PlannedRay& r = s.rays[first + i];
-        packet[i] = to_float(r.origin - mesh.origin, r.direction, r.t_near, r.t_far);
-      }
+      const RayLog::Ray* packet = s.unit.cast.data() + first;
       if (log) out.log.insert(out.log.end(), packet, packet + n);
       im.embree.cast_packet(packet, n, hits);
       for (std::size_t i = 0; i < n; ++i) {
         const EmbreeHit& hit = hits[i];
         if (!hit.hit()) continue;
-        const PlannedRay& r = s.rays[first + i];
         const std::uint32_t owner = mesh.owner_index[hit.triangle];
         const bool for_object = s.found[owner] <= kFurtherWitnesses;
         const bool for_triangle = triangles && !s.triangle_found[hit.triangle];
         if (!for_object && !for_triangle) continue;
+        const PlannedRay r = plan.planned(s.unit, first + i);  // the double-precision ray cast[first + i] rounds
         const double t = im.embree.exact_t(r.origin, r.direction, hit);
         const Vec3 hit_point = r.origin + r.direction * t;
         if (!volume.contains(hit_point)) continue;
@@ -156,10 +152,9 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
   };
   auto run_unit = [&](Sifter& s, std::size_t u, UnitResult& out) {
     out.clear();
-    s.rays.clear();
     if (u < objects) {
       const auto index = std::uint32_t(u);
-      const std::size_t surface = plan.object_rays(index, s.rays, s.tally, s.samples);
+      const std::size_t surface = plan.object_rays(index, s.unit, s.tally, s.samples);
       // Its surface samples until the object has all the witnesses the merge keeps, then its
       // grazing rays, which look past its silhouette at what lies behind.
       std::size_t k = 0;
@@ -170,11 +165,11 @@ OracleResult RayOracle::witness(const Camera& camera, const SamplingOptions& opt
         k = group_end;
       }
       out.skipped = surface - k;
-      sift(s, out, surface, s.rays.size());
+      sift(s, out, surface, s.unit.size());
     } else {
       const std::size_t first = (u - objects) * kCellsPerUnit;
-      plan.cell_rays(first, first + kCellsPerUnit, s.rays);
-      sift(s, out, 0, s.rays.size());
+      plan.cell_rays(first, first + kCellsPerUnit, s.unit);
+      sift(s, out, 0, s.unit.size());
     }
     s.reset();
   };

@@ -7,6 +7,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "oracle/embree_scene.hpp"
 #include "oracle/surface_samples.hpp"
 
 namespace cullcheck::oracle {
@@ -93,16 +94,12 @@ ViewCone::BoxSettles ViewCone::settles(const Box3& box) const {
   return out;
 }
 
-void ViewCone::rays_toward(const std::vector<Vec3>& points, const PlannedRay& prototype, std::vector<PlannedRay>& out,
-                           const Box3* within, bool to_far) const {
-  // Rays are written field by field into their slots (a whole ray built on the stack and copied
-  // stalls on its own stores), then the slots left over are cut off.
-  const std::size_t before = out.size();
-  out.resize(before + points.size(), prototype);
-  PlannedRay* next = out.data() + before;
+template <class Emit>
+void ViewCone::each_ray_toward(const std::vector<Vec3>& points, const Box3* within, bool to_far, Emit&& emit) const {
   if (orthographic_) {
-    for (Vec3 p : points) next += ray_toward(p, *next, to_far) ? 1 : 0;
-    out.resize(std::size_t(next - out.data()));
+    PlannedRay ray{};
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (ortho_ray_toward(points[i], ray, to_far)) emit(i, ray.origin, ray.direction, ray.t_near, ray.t_far);
     return;
   }
   // ray_toward's arithmetic, operation for operation, in loops over a run of points: each loop's
@@ -121,6 +118,12 @@ void ViewCone::rays_toward(const std::vector<Vec3>& points, const PlannedRay& pr
   for (std::size_t start = 0; start < points.size(); start += kRun) {
     const std::size_t m = std::min(kRun, points.size() - start);
     const Vec3* p = points.data() + start;
+    // The kept samples of a walk's candidates outgrow the caches, so the next run's points are
+    // asked for while this run's are worked on.
+    const Vec3* ahead = p + kRun;
+    const Vec3* stop = points.data() + points.size();
+    for (std::size_t line = 0; line < kRun * sizeof(Vec3); line += 64)
+      if (reinterpret_cast<const char*>(ahead) + line < reinterpret_cast<const char*>(stop)) __builtin_prefetch(reinterpret_cast<const char*>(ahead) + line);
     for (std::size_t i = 0; i < m; ++i) squared[i] = dot(p[i] - eye, p[i] - eye);
     sqrt_run(squared, distance, m);
     divide_run(1.0, distance, inverse, m);
@@ -149,15 +152,34 @@ void ViewCone::rays_toward(const std::vector<Vec3>& points, const PlannedRay& pr
       if (!(distance[i] > 0.0) || !inside[i]) continue;
       const double t = to_far ? t_far[i] : std::min(t_far[i], distance[i] * (1.0 + kBeyondRelative) + kBeyondAbsolute);
       if (!(t > t_near[i])) continue;
-      next->origin = eye;
-      next->direction = direction[i];
-      next->t_near = t_near[i];
-      next->t_far = t;
-      next->target = p[i];
-      ++next;
+      emit(start + i, eye, direction[i], t_near[i], t);
     }
   }
-  out.resize(std::size_t(next - out.data()));
+}
+
+void ViewCone::rays_toward(const std::vector<Vec3>& points, const PlannedRay& prototype, std::vector<PlannedRay>& out,
+                           const Box3* within, bool to_far) const {
+  each_ray_toward(points, within, to_far, [&](std::size_t i, Vec3 origin, Vec3 direction, double t_near, double t_far) {
+    PlannedRay& r = out.emplace_back(prototype);
+    r.origin = origin, r.direction = direction, r.t_near = t_near, r.t_far = t_far, r.target = points[i];
+  });
+}
+
+void ViewCone::cast_rays_toward(const std::vector<Vec3>& points, Vec3 mesh_origin, std::vector<RayLog::Ray>& cast,
+                                std::vector<std::uint32_t>& aim, const Box3* within, bool to_far) const {
+  // Written through pointers into slots made first, then the slots left over cut off: a
+  // push_back per ray (its capacity check, out of line) cost as much as the arithmetic.
+  const std::size_t before = cast.size();
+  cast.resize(before + points.size());
+  aim.resize(before + points.size());
+  RayLog::Ray* next_ray = cast.data() + before;
+  std::uint32_t* next_aim = aim.data() + before;
+  each_ray_toward(points, within, to_far, [&](std::size_t i, Vec3 origin, Vec3 direction, double t_near, double t_far) {
+    *next_ray++ = to_float(origin - mesh_origin, direction, t_near, t_far);
+    *next_aim++ = std::uint32_t(i);
+  });
+  cast.resize(std::size_t(next_ray - cast.data()));
+  aim.resize(cast.size());
 }
 
 RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& camera, const SamplingOptions& options,
@@ -178,8 +200,9 @@ RayPlan::RayPlan(const Scene& scene, const TriangleMesh& mesh, const Camera& cam
   }
 }
 
-std::size_t RayPlan::object_rays(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally,
-                                 SurfaceSamples& samples) const {
+std::size_t RayPlan::object_rays(std::uint32_t index, UnitRays& out, PlanTally& tally, SurfaceSamples& samples) const {
+  out.clear();
+  out.object = index;
   const bool building = index < scene_.buildings.size();
   const Box3& bounds = building ? scene_.buildings[index].bounds : scene_.meshes[index - scene_.buildings.size()].bounds;
   if (!cone_.transform().may_meet(bounds)) return 0;
@@ -190,25 +213,45 @@ std::size_t RayPlan::object_rays(std::uint32_t index, std::vector<PlannedRay>& o
   else
     sample_object(scene_, mesh_, index, options_, samples);
   tally.capped += kept->capped ? 1 : 0;
-  PlannedRay ray{};
-  ray.aimed_at = index;
-  ray.source = RaySource::surface_sample;
-  const std::size_t before = out.size();
-  cone_.rays_toward(kept->points, ray, out, &bounds);
-  const std::size_t surface = out.size() - before;
+  out.surface = &kept->points;
+  cone_.cast_rays_toward(kept->points, mesh_.origin, out.cast, out.aim, &bounds);
+  out.surface_rays = out.size();
   if (options_.graze_offset > 0.0) {
-    // The points passed just beside every silhouette edge, then their rays planned as one run;
-    // the surface samples' scratch holds them (those rays are planned).
-    std::vector<Vec3>& aims = samples.points;
-    aims.clear();
-    if (building) plan_grazing(index, aims);
-    else plan_mesh_grazing(index, aims);
-    ray.source = RaySource::grazing;
-    const std::size_t before_grazing = out.size();
-    cone_.rays_toward(aims, ray, out, nullptr, /*to_far=*/true);
-    tally.grazing += out.size() - before_grazing;
+    // The points passed just beside every silhouette edge, then their rays planned as one run.
+    if (building) plan_grazing(index, out.grazing);
+    else plan_mesh_grazing(index, out.grazing);
+    cone_.cast_rays_toward(out.grazing, mesh_.origin, out.cast, out.aim, nullptr, /*to_far=*/true);
+    tally.grazing += out.size() - out.surface_rays;
   }
+  return out.surface_rays;
+}
+
+PlannedRay RayPlan::planned(const UnitRays& unit, std::size_t k) const {
+  PlannedRay ray{};
+  if (unit.object == kNoObjectIndex) {
+    const std::size_t cell = unit.first_cell + unit.aim[k];
+    SplitMix64 rng = SplitMix64::at(options_.seed, 2 * std::uint64_t(cell));
+    plan_cell(cell, rng, ray);
+    return ray;
+  }
+  const bool grazing = k >= unit.surface_rays;
+  ray.aimed_at = unit.object;
+  ray.source = grazing ? RaySource::grazing : RaySource::surface_sample;
+  cone_.ray_toward(grazing ? unit.grazing[unit.aim[k]] : (*unit.surface)[unit.aim[k]], ray, /*to_far=*/grazing);
+  return ray;
+}
+
+std::size_t RayPlan::object_rays(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally, SurfaceSamples& samples) const {
+  UnitRays unit;
+  const std::size_t surface = object_rays(index, unit, tally, samples);
+  for (std::size_t k = 0; k < unit.size(); ++k) out.push_back(planned(unit, k));
   return surface;
+}
+
+void RayPlan::cell_rays(std::size_t first, std::size_t last, std::vector<PlannedRay>& out) const {
+  UnitRays unit;
+  cell_rays(first, last, unit);
+  for (std::size_t k = 0; k < unit.size(); ++k) out.push_back(planned(unit, k));
 }
 
 // The points just either side of a silhouette edge p0-p1, sampled along it, that grazing rays
@@ -282,11 +325,11 @@ void RayPlan::plan_mesh_grazing(std::uint32_t index, std::vector<Vec3>& aims) co
   }
 }
 
-void RayPlan::plan_cell(std::size_t cell, SplitMix64& rng, std::vector<PlannedRay>& out) const {
+bool RayPlan::plan_cell(std::size_t cell, SplitMix64& rng, PlannedRay& ray) const {
   const int i = int(cell % std::size_t(columns_)), j = int(cell / std::size_t(columns_));
   const double r1 = rng.unit(), r2 = rng.unit();
   const ViewTransform& view = cone_.transform();
-  PlannedRay ray{};
+  ray = PlannedRay{};
   ray.origin = camera_.position;
   ray.aimed_at = kNoObjectIndex;
   ray.source = RaySource::stratified;
@@ -303,15 +346,21 @@ void RayPlan::plan_cell(std::size_t cell, SplitMix64& rng, std::vector<PlannedRa
   } else {
     ray.direction = view.direction_through(u, v);
   }
-  if (cone_.extent(ray.direction, ray.t_near, ray.t_far) && ray.t_far > ray.t_near) {
-    ray.target = ray.origin + ray.direction * ray.t_far;
-    out.push_back(ray);
-  }
+  if (!cone_.extent(ray.direction, ray.t_near, ray.t_far) || !(ray.t_far > ray.t_near)) return false;
+  ray.target = ray.origin + ray.direction * ray.t_far;
+  return true;
 }
 
-void RayPlan::cell_rays(std::size_t first, std::size_t last, std::vector<PlannedRay>& out) const {
+void RayPlan::cell_rays(std::size_t first, std::size_t last, UnitRays& out) const {
+  out.clear();
+  out.first_cell = first;
   SplitMix64 rng = SplitMix64::at(options_.seed, 2 * std::uint64_t(first));
-  for (std::size_t c = first; c < last && c < cells(); ++c) plan_cell(c, rng, out);
+  PlannedRay ray{};
+  for (std::size_t c = first; c < last && c < cells(); ++c)
+    if (plan_cell(c, rng, ray)) {
+      out.cast.push_back(to_float(ray.origin - mesh_.origin, ray.direction, ray.t_near, ray.t_far));
+      out.aim.push_back(std::uint32_t(c - first));
+    }
 }
 
 }  // namespace cullcheck::oracle

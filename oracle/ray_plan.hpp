@@ -78,6 +78,10 @@ class ViewCone {
   // With `within`, a box holding every point, tests that box settles for all of them are skipped.
   void rays_toward(const std::vector<Vec3>& points, const PlannedRay& prototype, std::vector<PlannedRay>& out,
                    const Box3* within = nullptr, bool to_far = false) const;
+  // The same rays as Embree is handed them, to_float(origin - mesh_origin, ...), appended to
+  // `cast`, with the index of each one's point appended to `aim`.
+  void cast_rays_toward(const std::vector<Vec3>& points, Vec3 mesh_origin, std::vector<RayLog::Ray>& cast,
+                        std::vector<std::uint32_t>& aim, const Box3* within = nullptr, bool to_far = false) const;
   Vec3 forward() const { return forward_; }
   // What holds for the ray toward every point of `box` (perspective cameras), by a margin far
   // above the rounding of ray_toward's arithmetic, so that skipping the test changes no bit:
@@ -90,6 +94,10 @@ class ViewCone {
 
  private:
   bool ortho_ray_toward(Vec3 p, PlannedRay& out, bool to_far) const;
+  // ray_toward over a run of points: emit(i, origin, direction, t_near, t_far) for each point i
+  // that has a ray (rays_toward and cast_rays_toward write what they keep of it).
+  template <class Emit>
+  void each_ray_toward(const std::vector<Vec3>& points, const Box3* within, bool to_far, Emit&& emit) const;
 
   ViewTransform transform_;
   Vec3 forward_;
@@ -101,6 +109,23 @@ class ViewCone {
 struct PlanTally {
   std::size_t candidates = 0, capped = 0;
   std::uint64_t grazing = 0;
+};
+
+// One unit's rays as Embree is handed them, with what rebuilds each one's PlannedRay bit for bit
+// (RayPlan::planned): the index of the point it aims at, or of its stratified cell. The casting
+// loop then moves 36 bytes a ray instead of a double-precision ray and its float copy; the few
+// rays whose hit may witness something are rebuilt.
+struct UnitRays {
+  std::vector<RayLog::Ray> cast;     // to_float of each planned ray, in plan order
+  std::vector<std::uint32_t> aim;    // per ray: its surface sample, grazing aim, or cell - first_cell
+  std::uint32_t object = kNoObjectIndex;       // the unit's object, or kNoObjectIndex for a run of cells
+  const std::vector<Vec3>* surface = nullptr;  // the object's surface samples (kept, or the caller's scratch)
+  std::vector<Vec3> grazing;                   // the points its grazing rays aim at
+  std::size_t surface_rays = 0;                // rays [0, surface_rays) are surface-sample rays
+  std::size_t first_cell = 0;
+
+  std::size_t size() const { return cast.size(); }
+  void clear() { cast.clear(), aim.clear(), grazing.clear(), object = kNoObjectIndex, surface = nullptr, surface_rays = 0, first_cell = 0; }
 };
 
 // The plan as independent units, so that any unit can be planned on any thread: the objects
@@ -117,9 +142,15 @@ class RayPlan {
   // Appends object `index`'s rays to `out`: its surface samples, then its grazing rays (none
   // when its box cannot meet the view volume). Returns how many surface-sample rays lead.
   // `samples` is scratch memory, one per thread.
-  std::size_t object_rays(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally, SurfaceSamples& samples) const;
-  // Appends the rays of stratified cells [first, last). Cell c's jitter is draws 2c and 2c + 1
+  // `samples` is scratch memory, one per thread, which `out` may point into until the next call.
+  std::size_t object_rays(std::uint32_t index, UnitRays& out, PlanTally& tally, SurfaceSamples& samples) const;
+  // The rays of stratified cells [first, last) into `out`. Cell c's jitter is draws 2c and 2c + 1
   // of the SplitMix64 stream seeded with options.seed, wherever the run starts.
+  void cell_rays(std::size_t first, std::size_t last, UnitRays& out) const;
+  // Ray k of a unit in double precision, as planned: cast[k] is to_float of it.
+  PlannedRay planned(const UnitRays& unit, std::size_t k) const;
+  // The same two, appending every ray planned in double precision (for tests and tools).
+  std::size_t object_rays(std::uint32_t index, std::vector<PlannedRay>& out, PlanTally& tally, SurfaceSamples& samples) const;
   void cell_rays(std::size_t first, std::size_t last, std::vector<PlannedRay>& out) const;
   const ViewCone& cone() const { return cone_; }
 
@@ -128,7 +159,7 @@ class RayPlan {
   void plan_grazing(std::uint32_t index, std::vector<Vec3>& aims) const;
   void plan_mesh_grazing(std::uint32_t index, std::vector<Vec3>& aims) const;
   void graze_along(Vec3 p0, Vec3 p1, std::vector<Vec3>& aims) const;
-  void plan_cell(std::size_t cell, SplitMix64& rng, std::vector<PlannedRay>& out) const;
+  bool plan_cell(std::size_t cell, SplitMix64& rng, PlannedRay& out) const;
 
   const Scene& scene_;
   const TriangleMesh& mesh_;

@@ -82,7 +82,7 @@ TEST(RayOracleUnits, EveryRayOnAnyThreadCountWitnessesWithTheRayOneAtATimeFinds)
 // however the casting path plans them (samples kept across queries, rays planned a run of points
 // at a time), not one bit of one ray may differ from ray_toward's, point by point.
 TEST(RayOracleUnits, TheRaysCastAreThePlansRaysBitForBit) {
-  std::uint64_t compared = 0;
+  std::uint64_t compared = 0, rebuilt = 0;
   for (std::uint64_t seed = 1; seed <= 12; ++seed) {
     const RandomCity city = random_city(seed);
     const RayOracle oracle(city.scene);
@@ -109,6 +109,16 @@ TEST(RayOracleUnits, TheRaysCastAreThePlansRaysBitForBit) {
       for (Vec3 p : fresh.points)
         if (plan.cone().ray_toward(p, ray)) rays.push_back(ray), ++kept;
       ASSERT_EQ(kept, surface) << "object index " << i;
+      // object_rays rebuilds each ray from the point it aims at (RayPlan::planned): the double
+      // rays themselves, not only their float copies, are ray_toward's.
+      for (std::size_t k = 0; k < surface; ++k) {
+        const PlannedRay& want = rays[rays.size() - surface + k];
+        const PlannedRay& got = object[k];
+        ASSERT_TRUE(got.origin == want.origin && got.direction == want.direction && got.t_near == want.t_near &&
+                    got.t_far == want.t_far && got.target == want.target && got.aimed_at == want.aimed_at && got.source == want.source)
+            << "object index " << i << ", surface ray " << k;
+        ++rebuilt;
+      }
       rays.insert(rays.end(), object.begin() + std::ptrdiff_t(surface), object.end());
     }
     plan.cell_rays(0, plan.cells(), rays);
@@ -130,6 +140,7 @@ TEST(RayOracleUnits, TheRaysCastAreThePlansRaysBitForBit) {
     }
   }
   EXPECT_EQ(compared, 4u * 1093453u);  // every ray of the twelve plans, twice on each thread count
+  EXPECT_EQ(rebuilt, 294361u);  // the surface rays among them
 }
 
 // to_float's one-ulp step up is std::nextafter's, on the values a plan gives and on every class
