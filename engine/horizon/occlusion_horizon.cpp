@@ -78,7 +78,7 @@ bool AzimuthSpan::valid() const {
   return std::abs(begin) <= kMaxAzimuth && std::abs(end) <= kMaxAzimuth && begin <= end && slack >= 0.0;
 }
 
-OcclusionHorizon::OcclusionHorizon(std::uint32_t bins) : bins_(bins), bin_width_(kTwoPi / bins) {
+OcclusionHorizon::OcclusionHorizon(std::uint32_t bins) : bins_(bins), bin_width_(kTwoPi / bins), octant_(bins) {
   if (bins < 2 || (bins & (bins - 1)) != 0 || bins > (1u << 22))
     throw std::invalid_argument("horizon bins must be a power of two in [2, 2^22], got " + std::to_string(bins));
   block_shift_ = block_shift_for(bins);
@@ -118,6 +118,11 @@ bool OcclusionHorizon::for_each_range(const AzimuthSpan& span, bool inner, F&& f
     first = std::floor((span.begin - span.slack) / bin_width_);
     last = std::floor((span.end + span.slack) / bin_width_);
   }
+  return for_each_bin_range(first, last, f);
+}
+
+template <class F>
+bool OcclusionHorizon::for_each_bin_range(double first, double last, F&& f) const {
   if (!(first <= last)) return false;
   const double bins = bins_;
   if (last - first + 1 >= bins) {
@@ -176,6 +181,15 @@ bool OcclusionHorizon::hides(const AzimuthSpan& span, double max_slope) {
   if (!std::isfinite(max_slope)) return false;
   bool hidden = true;
   const bool read = for_each_range(span, /*inner=*/false, [&](std::uint32_t first, std::uint32_t last) {
+    if (hidden) hidden = hides_bins(first, last, max_slope);
+  });
+  return read && hidden;
+}
+
+bool OcclusionHorizon::hides_range(const BinRange& range, double max_slope) {
+  if (!std::isfinite(max_slope)) return false;
+  bool hidden = true;
+  const bool read = for_each_bin_range(double(range.first), double(range.last), [&](std::uint32_t first, std::uint32_t last) {
     if (hidden) hidden = hides_bins(first, last, max_slope);
   });
   return read && hidden;

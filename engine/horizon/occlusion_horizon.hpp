@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "engine/horizon/box_bins.hpp"
 
 namespace cullcheck {
 
@@ -87,6 +88,11 @@ class OcclusionHorizon {
   // True when an object whose every point over `span` has slope below `max_slope` is hidden:
   // max_slope < min H over every bin touched by `span`. False when max_slope is not finite.
   bool hides(const AzimuthSpan& span, double max_slope);
+  // hides() over bins already rounded: `range` as box_outer_bins gives it (the outer rounding of
+  // a span, which hides() would compute from the span).
+  bool hides_range(const BinRange& range, double max_slope);
+  // The bin boundaries box_outer_bins reads.
+  const OctantBoundaries& octant_boundaries() const { return octant_; }
   // min H over the bins touched by `span`; −inf when the span is invalid or touches no bin.
   double min_over(const AzimuthSpan& span);
   // max H over the bins touched by `span`; +inf when the span is invalid or touches no bin.
@@ -129,11 +135,15 @@ class OcclusionHorizon {
   // Calls f(first, last) for the one or two non-wrapping bin ranges of a span; returns whether
   // it called f at all (false for an invalid span or an empty rounding).
   template <class F> bool for_each_range(const AzimuthSpan& span, bool inner, F&& f) const;
+  // The same from the unrolled bin indices [first, last] of a rounding (doubles: not yet known
+  // to be in range).
+  template <class F> bool for_each_bin_range(double first, double last, F&& f) const;
 
   std::uint32_t bins_;
   double bin_width_;
   std::uint32_t block_shift_;  // a block holds 1 << block_shift_ bins
   std::uint32_t blocks_;
+  OctantBoundaries octant_;
 
   // A bin's value is max(bin_[i], lift_[block]); block_min_/block_max_ hold the min and max of
   // those values over the block.

@@ -1,0 +1,121 @@
+// box_outer_bins (engine/horizon/box_bins.hpp) against the span it stands in for: whenever it
+// gives a bin range, that range is the outer rounding OcclusionHorizon::hides reads for
+// box_span(box, eye), floor((begin - slack) / w) .. floor((end + slack) / w), and hides_range
+// answers as hides does. Drawn boxes at plan coordinates up to 1e7, eyes anywhere around them,
+// eyes on a box's edge lines (two corners in one direction), and boxes with a corner placed within
+// 1e-15 to 1e-6 rad of a bin boundary as the eye sees it, on 8 to 2^20 bins.
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+
+#include <cmath>
+#include <iostream>
+#include <optional>
+
+#include "engine/horizon/box_bins.hpp"
+#include "engine/horizon/occlusion_horizon.hpp"
+#include "engine/horizon/polar_geometry.hpp"
+#include "properties/property_run.hpp"
+
+namespace cullcheck {
+namespace {
+
+// OcclusionHorizon::for_each_range's outer rounding, restated.
+BinRange outer_rounding(const AzimuthSpan& s, std::uint32_t bins) {
+  const double w = kTwoPi / bins;
+  return {std::int64_t(std::floor((s.begin - s.slack) / w)), std::int64_t(std::floor((s.end + s.slack) / w))};
+}
+
+// How far (radians) the nearer end of a span lies from a bin boundary.
+double nearest_boundary(const AzimuthSpan& s, std::uint32_t bins) {
+  const double w = kTwoPi / bins;
+  auto off = [&](double a) {
+    const double x = a / w;
+    return std::abs(x - std::round(x)) * w;
+  };
+  return std::min(off(s.begin), off(s.end));
+}
+
+TEST(BoxBins, GivenOnlyWhereTheyAreTheSpansOuterRounding) {
+  int taken = 0, declined = 0, no_span = 0, near_boundary = 0, near_taken = 0, on_edge_line = 0, on_edge_taken = 0, far_out = 0;
+  const PropertyOutcome run = run_property("box_outer_bins equals the span's outer rounding", 3000, true, [&] {
+    const std::uint32_t bins = *rc::gen::element(8u, 64u, 1024u, 4096u, 16384u, 1u << 20);
+    const double w = kTwoPi / bins;
+    const double offset = *rc::gen::element(0.0, 1e3, -2.5e5, 1e6, 1e7);
+    auto unit = [] { return *rc::gen::inRange(0, 1000000) / 1e6; };
+    const double width = 1e-3 + 200.0 * unit(), height = 1e-3 + 200.0 * unit();
+    const int mode = *rc::gen::inRange(0, 3);
+    Vec2 eye{offset + 400.0 * (unit() - 0.5), offset + 400.0 * (unit() - 0.5)};
+    Box2 box;
+    if (mode == 0) {  // anywhere
+      box.lo = {offset + 300.0 * (unit() - 0.5), offset + 300.0 * (unit() - 0.5)};
+    } else if (mode == 1) {  // the eye on the line of one of the box's edges
+      box.lo = {offset + 300.0 * (unit() - 0.5), offset + 300.0 * (unit() - 0.5)};
+      const int edge = *rc::gen::inRange(0, 4);
+      if (edge == 0) eye.y = box.lo.y;
+      if (edge == 1) eye.y = box.lo.y + height;
+      if (edge == 2) eye.x = box.lo.x;
+      if (edge == 3) eye.x = box.lo.x + width;
+    } else {  // a corner seen within a hair of a bin boundary
+      const double k = std::floor(unit() * bins);
+      const double hair = *rc::gen::element(0.0, 1e-15, -1e-15, 1e-13, -1e-13, 2e-12, -2e-12, 5e-12, -5e-12, 1e-11, -1e-11, 1e-9, -1e-9, 1e-6, -1e-6);
+      const double angle = k * w + hair, r = 1.0 + 300.0 * unit();
+      const Vec2 corner{eye.x + r * std::cos(angle), eye.y + r * std::sin(angle)};
+      // The corner is the box's low, right, high or left corner.
+      const int which = *rc::gen::inRange(0, 4);
+      box.lo = {corner.x - (which == 1 || which == 2 ? width : 0.0), corner.y - (which >= 2 ? height : 0.0)};
+    }
+    box.hi = {box.lo.x + width, box.lo.y + height};
+
+    const std::optional<BinRange> fast = box_outer_bins(box, eye, OctantBoundaries(bins));
+    const std::optional<ConvexSpan> exact = box_span(box, eye);
+    if (!exact) {
+      RC_ASSERT(!fast);
+      ++no_span;
+      return;
+    }
+    const bool near = nearest_boundary(exact->span, bins) < 1e-8;
+    const bool edge_line = eye.x == box.lo.x || eye.x == box.hi.x || eye.y == box.lo.y || eye.y == box.hi.y;
+    near_boundary += near ? 1 : 0;
+    on_edge_line += edge_line ? 1 : 0;
+    if (!fast) {
+      ++declined;
+      return;
+    }
+    ++taken;
+    near_taken += near ? 1 : 0;
+    on_edge_taken += edge_line ? 1 : 0;
+    far_out += std::abs(eye.x) > 5e6 ? 1 : 0;
+    const BinRange want = outer_rounding(exact->span, bins);
+    RC_ASSERT(fast->first == want.first);
+    RC_ASSERT(fast->last == want.last);
+    // And the horizon answers alike, over a horizon raised somewhere around the span (up to
+    // 16,384 bins: a finer horizon costs megabytes a case).
+    if (bins > 16384u) return;
+    OcclusionHorizon horizon(bins);
+    const int raises = *rc::gen::inRange(0, 6);
+    for (int i = 0; i < raises; ++i) {
+      const double begin = exact->span.begin + (unit() - 0.5) * 4.0 * (exact->span.end - exact->span.begin + w);
+      horizon.raise({begin, begin + unit() * 3.0, kAngularSlack}, unit());
+    }
+    const double slope = unit();
+    RC_ASSERT(horizon.hides_range(*fast, slope) == horizon.hides(exact->span, slope));
+  });
+  ASSERT_TRUE(run.held);
+  if (reproducing()) return;
+  std::cerr << "cases " << run.cases << ": bins given " << taken << ", declined " << declined << ", no span " << no_span
+            << "; ends within 1e-8 rad of a boundary " << near_boundary << " (given " << near_taken << "); eye on an edge line "
+            << on_edge_line << " (given " << on_edge_taken << "); given at coordinates near 1e7 " << far_out << "\n";
+  // The hard cases were reached: most boxes are answered, ends near a boundary are met (and some
+  // of those, farther than the margin, still answered). An eye on an edge line sees two corners
+  // in one direction, an axis, which is a bin boundary: those are met and never answered.
+  EXPECT_GE(taken, run.cases / 2);
+  EXPECT_GE(near_boundary, run.cases / 20);
+  EXPECT_GE(near_taken, 1);
+  EXPECT_GE(on_edge_line, run.cases / 20);
+  EXPECT_EQ(on_edge_taken, 0);
+  EXPECT_GE(far_out, run.cases / 20);
+  EXPECT_GE(no_span, 1);
+}
+
+}  // namespace
+}  // namespace cullcheck
