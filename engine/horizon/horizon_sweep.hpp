@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <type_traits>
 #include <vector>
 
 #include "core/camera.hpp"
@@ -160,8 +159,9 @@ bool box_hidden(Horizon& horizon, const std::optional<ConvexSpan>& span, const B
 template <class Horizon>
 bool box_hidden(Horizon& horizon, const Box2& box, double top, Vec3 eye, double margin = 0.0) {
   // OH(OS)'s test reads the bins of the box's span, not the span: box_outer_bins gives those
-  // bins without atan2 wherever they are certain (issue 17), the span gives them elsewhere.
-  if constexpr (std::is_same_v<Horizon, OcclusionHorizon>) {
+  // bins without atan2 wherever they are certain (issue 17), the span gives them elsewhere. For
+  // any horizon that also answers over bins already rounded.
+  if constexpr (requires { horizon.hides_range(BinRange{}, 0.0); horizon.octant_boundaries(); }) {
     if (margin == 0.0)
       if (const auto bins = box_outer_bins(box, plan(eye), horizon.octant_boundaries())) {
         const Vec2 e = plan(eye);

@@ -195,6 +195,13 @@ bool OcclusionHorizon::hides_range(const BinRange& range, double max_slope) {
   return read && hidden;
 }
 
+double OcclusionHorizon::min_over_range(const BinRange& range) {
+  double m = kAll;
+  const bool read = for_each_bin_range(double(range.first), double(range.last),
+                                       [&](std::uint32_t a, std::uint32_t b) { m = std::min(m, min_bins(a, b)); });
+  return read ? m : kNone;
+}
+
 bool OcclusionHorizon::hides_bins(std::uint32_t first, std::uint32_t last, double max_slope) {
   const std::uint32_t mask = (1u << block_shift_) - 1;
   const std::uint32_t last_block = last >> block_shift_;

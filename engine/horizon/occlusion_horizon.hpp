@@ -91,6 +91,8 @@ class OcclusionHorizon {
   // hides() over bins already rounded: `range` as box_outer_bins gives it (the outer rounding of
   // a span, which hides() would compute from the span).
   bool hides_range(const BinRange& range, double max_slope);
+  // min_over() over bins already rounded, as hides_range.
+  double min_over_range(const BinRange& range);
   // The bin boundaries box_outer_bins reads.
   const OctantBoundaries& octant_boundaries() const { return octant_; }
   // min H over the bins touched by `span`; −inf when the span is invalid or touches no bin.

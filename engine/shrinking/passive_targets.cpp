@@ -113,6 +113,16 @@ struct NearestShadows {
     }
     return d < HUGE_VAL ? nearest.hides(span, -d) : nearest.min_over(span) > -HUGE_VAL;
   }
+  // The same over bins box_outer_bins rounded (box_hidden's path without the span).
+  bool hides_range(const BinRange& range, double slope) {
+    if (!std::isfinite(slope)) return false;
+    if (slope != 0.0) {
+      fallback = true;
+      return false;
+    }
+    return d < HUGE_VAL ? nearest.hides_range(range, -d) : nearest.min_over_range(range) > -HUGE_VAL;
+  }
+  const OctantBoundaries& octant_boundaries() const { return nearest.octant_boundaries(); }
 };
 
 }  // namespace
