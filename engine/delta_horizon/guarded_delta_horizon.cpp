@@ -50,8 +50,6 @@ void fix_vertices(const RegionCertificate& certificate, const MotionRegion& regi
   for (std::uint32_t b : certificate.swept()) {
     const Building& building = scene.buildings[b];
     order.push_back({0.0, b, static_cast<std::uint32_t>(vertices.size())});
-    const std::array<Vec2, 4> corners = box_corners(building.bounds.plan());
-    vertices.push_back(disc_vertices(corners.data(), corners.size(), centre, radius));
     for (const ConvexVerticalPrism& prism : building.prisms)
       vertices.push_back(disc_vertices(prism.ring.data(), prism.ring.size(), centre, radius));
   }
@@ -148,15 +146,15 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     const DiscVertices* fixed = vertices_.data() + swept.vertices;
     auto span_of = [&](std::size_t p) {
       const std::vector<Vec2>& ring = building.prisms[p].ring;
-      return span_from_tangents(ring.data(), ring.size(), fixed[1 + p], e);
+      return span_from_tangents(ring.data(), ring.size(), fixed[p], e);
     };
     auto farthest_of = [&](std::size_t p) {
       const std::vector<Vec2>& ring = building.prisms[p].ring;
-      return distance_to_vertex(ring.data(), ring.size(), fixed[1 + p], e);
+      return distance_to_vertex(ring.data(), ring.size(), fixed[p], e);
     };
     auto nearest_of = [&](std::size_t p) {
       const std::vector<Vec2>& ring = building.prisms[p].ring;
-      return distance_to_edge(ring.data(), ring.size(), fixed[1 + p], e);
+      return distance_to_edge(ring.data(), ring.size(), fixed[p], e);
     };
     if (current_->certainly_visible(b)) {
       spans.clear();
@@ -164,10 +162,9 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
     } else {
       ++stats.buildings_tested;
       if (!volume.may_intersect(building.bounds)) continue;
-      const Box2 box = building.bounds.plan();
-      const std::array<Vec2, 4> corners = box_corners(box);
-      const auto box_view = span_from_tangents(corners.data(), corners.size(), fixed[0], e);
-      if (box_hidden(horizon_, box_view, box, building.height, eye) ||
+      // The box's bins without its span where box_outer_bins is certain of them (box_hidden),
+      // which reads no tangent: span_from_tangents gives box_span's span bit for bit.
+      if (box_hidden(horizon_, building.bounds.plan(), building.height, eye) ||
           !prisms_visible(horizon_, building, eye, spans, span_of, nearest_of, farthest_of))
         continue;
       found.push_back(b);

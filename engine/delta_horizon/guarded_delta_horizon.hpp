@@ -81,7 +81,8 @@ class GuardedDeltaHorizonCulling final : public CullingMethod {
   std::optional<Camera> last_camera_;
   std::vector<std::uint32_t> last_found_;  // scene indices of the uncertain buildings the last query found visible
   // A swept building, its distance from the eye (the order of the sweep), and where its
-  // vertices fixed for the region start in `vertices_`: [0] its box's corners, [1 + p] CVP p.
+  // vertices fixed for the region start in `vertices_`: [p] CVP p (its box needs none: box_hidden
+  // reads the box's bins, horizon_sweep.hpp).
   struct Swept {
     double distance;
     std::uint32_t building;

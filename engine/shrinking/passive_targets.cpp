@@ -106,23 +106,24 @@ struct NearestShadows {
   double d = 0.0;
   bool fallback = false;
   bool hides(const AzimuthSpan& span, double slope) {
-    if (!std::isfinite(slope)) return false;
-    if (slope != 0.0) {
-      fallback = true;
-      return false;
-    }
-    return d < HUGE_VAL ? nearest.hides(span, -d) : nearest.min_over(span) > -HUGE_VAL;
+    return read(slope, [&] { return d < HUGE_VAL ? nearest.hides(span, -d) : nearest.min_over(span) > -HUGE_VAL; });
   }
   // The same over bins box_outer_bins rounded (box_hidden's path without the span).
   bool hides_range(const BinRange& range, double slope) {
+    return read(slope, [&] { return d < HUGE_VAL ? nearest.hides_range(range, -d) : nearest.min_over_range(range) > -HUGE_VAL; });
+  }
+  const OctantBoundaries& octant_boundaries() const { return nearest.octant_boundaries(); }
+
+ private:
+  template <class Read>
+  bool read(double slope, const Read& bins) {
     if (!std::isfinite(slope)) return false;
     if (slope != 0.0) {
       fallback = true;
       return false;
     }
-    return d < HUGE_VAL ? nearest.hides_range(range, -d) : nearest.min_over_range(range) > -HUGE_VAL;
+    return bins();
   }
-  const OctantBoundaries& octant_boundaries() const { return nearest.octant_boundaries(); }
 };
 
 }  // namespace
