@@ -13,8 +13,8 @@
 // thousands of times atan2's and the subtractions' rounding). Otherwise, and for an eye inside,
 // on or within 1e-6 of the box's size of it (where box_span may find no span), none is given and
 // the caller computes the span. So the bins are box_span's whenever they are given
-// (properties/horizon_structure_test.cpp holds this on drawn boxes, eyes on the boxes' edge lines
-// and directions within 1e-9 rad of a bin boundary).
+// (properties/box_bins_test.cpp, in horizon_structure_test, holds this on drawn boxes, eyes on
+// the boxes' edge lines and corners within 1e-15 to 1e-6 rad of a bin boundary).
 #pragma once
 
 #include <cstdint>
