@@ -110,6 +110,7 @@ double plan_only_seconds(const RayOracle& oracle, SampleCache& cache, const Came
   PlanTally tally;
   SurfaceSamples samples;
   for (std::uint32_t i = 0; i < plan.objects(); ++i) planned += (plan.object_rays(i, unit, tally, samples), unit.size());
+  // Cells in runs of 2,048, as the oracle's units take them (ray_oracle.cpp's kCellsPerUnit).
   for (std::size_t first = 0; first < plan.cells(); first += 2048) planned += (plan.cell_rays(first, first + 2048, unit), unit.size());
   benchmark::DoNotOptimize(unit.cast.data());
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -139,10 +139,10 @@ class RayPlan {
           SampleCache* cache = nullptr);
   std::size_t objects() const { return scene_.object_count(); }
   std::size_t cells() const { return std::size_t(columns_) * std::size_t(rows_); }
-  // Appends object `index`'s rays to `out`: its surface samples, then its grazing rays (none
-  // when its box cannot meet the view volume). Returns how many surface-sample rays lead.
-  // `samples` is scratch memory, one per thread.
-  // `samples` is scratch memory, one per thread, which `out` may point into until the next call.
+  // Object `index`'s rays into `out` (replacing what it held): its surface samples, then its
+  // grazing rays (none when its box cannot meet the view volume). Returns how many surface-sample
+  // rays lead. `samples` is scratch memory, one per thread, which `out` may point into until the
+  // next call.
   std::size_t object_rays(std::uint32_t index, UnitRays& out, PlanTally& tally, SurfaceSamples& samples) const;
   // The rays of stratified cells [first, last) into `out`. Cell c's jitter is draws 2c and 2c + 1
   // of the SplitMix64 stream seeded with options.seed, wherever the run starts.

@@ -158,18 +158,16 @@ bool box_hidden(Horizon& horizon, const std::optional<ConvexSpan>& span, const B
 }
 template <class Horizon>
 bool box_hidden(Horizon& horizon, const Box2& box, double top, Vec3 eye, double margin = 0.0) {
+  const Vec2 e = plan(eye);
   // OH(OS)'s test reads the bins of the box's span, not the span: box_outer_bins gives those
   // bins without atan2 wherever they are certain (issue 17), the span gives them elsewhere. For
   // any horizon that also answers over bins already rounded.
   if constexpr (requires { horizon.hides_range(BinRange{}, 0.0); horizon.octant_boundaries(); }) {
     if (margin == 0.0)
-      if (const auto bins = box_outer_bins(box, plan(eye), horizon.octant_boundaries())) {
-        const Vec2 e = plan(eye);
-        const double farthest = max_distance(e, box);
-        return horizon.hides_range(*bins, max_slope(top, eye.z, min_distance(e, box), farthest));
-      }
+      if (const auto bins = box_outer_bins(box, e, horizon.octant_boundaries()))
+        return horizon.hides_range(*bins, max_slope(top, eye.z, min_distance(e, box), max_distance(e, box)));
   }
-  return box_hidden(horizon, box_span(box, plan(eye)), box, top, eye, margin);
+  return box_hidden(horizon, box_span(box, e), box, top, eye, margin);
 }
 // A quadtree cell is hidden when both boxes of its height split are (Quadtree::Cell): its tall
 // buildings' box up to the tallest, and the whole cell up to the others' height. Sharper than
