@@ -79,5 +79,43 @@ TEST(BackgroundTask, DestructionWaitsForARunningTask) {
   EXPECT_TRUE(finished);
 }
 
+// A start() soon after the last task finds the thread napping and hands the task over without
+// waking it; only the first (the thread starts parked) wakes it.
+TEST(BackgroundTask, AStartWhileTheThreadNapsWakesNothing) {
+  BackgroundTask task{std::chrono::seconds(10)};
+  int ran = 0;
+  for (int k = 0; k < 6; ++k) {
+    task.start([&] { ++ran; });
+    task.wait();
+  }
+  EXPECT_EQ(ran, 6);
+  EXPECT_EQ(task.wakes(), 1u);
+}
+
+TEST(BackgroundTask, WithoutANapWindowEveryStartWakesTheParkedThread) {
+  BackgroundTask task{std::chrono::microseconds(0)};
+  int ran = 0;
+  for (int k = 0; k < 4; ++k) {
+    task.start([&] { ++ran; });
+    task.wait();
+  }
+  EXPECT_EQ(ran, 4);
+  EXPECT_EQ(task.wakes(), 4u);
+}
+
+// Past the window the thread parks; a task started then still runs (a lost wake-up would hang
+// here), and so does destruction while it naps or is parked.
+TEST(BackgroundTask, AfterTheNapWindowATaskStillRuns) {
+  BackgroundTask task{std::chrono::milliseconds(1)};
+  int ran = 0;
+  task.start([&] { ++ran; });
+  task.wait();
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  task.start([&] { ++ran; });
+  task.wait();
+  EXPECT_EQ(ran, 2);
+  EXPECT_GE(task.wakes(), 1u);
+}
+
 }  // namespace
 }  // namespace cullcheck
