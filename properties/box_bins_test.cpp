@@ -1,15 +1,20 @@
-// box_outer_bins (engine/horizon/box_bins.hpp) against the span it stands in for: whenever it
+// box_outer_bins and span_inner_bins (engine/horizon/box_bins.hpp) against the spans they stand
+// in for. box_outer_bins: whenever it
 // gives a bin range, that range is the outer rounding OcclusionHorizon::hides reads for
 // box_span(box, eye), floor((begin - slack) / w) .. floor((end + slack) / w), and hides_range
 // answers as hides does. Drawn boxes at plan coordinates up to 1e7, eyes anywhere around them,
 // eyes on a box's edge lines (two corners in one direction), and boxes with a corner placed within
-// 1e-15 to 1e-6 rad of a bin boundary as the eye sees it, on 8 to 2^20 bins.
+// 1e-15 to 1e-6 rad of a bin boundary as the eye sees it, on 8 to 2^20 bins. span_inner_bins:
+// whenever it gives a bin range, that range is the inner rounding OcclusionHorizon::raise takes
+// of convex_span's span, ceil((begin + slack) / w) .. floor((end - slack) / w) - 1, and
+// raise_range raises the horizon as raise does; over boxes drawn as above and convex polygons.
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <vector>
 
 #include "engine/horizon/box_bins.hpp"
 #include "engine/horizon/occlusion_horizon.hpp"
@@ -115,6 +120,94 @@ TEST(BoxBins, GivenOnlyWhereTheyAreTheSpansOuterRounding) {
   EXPECT_EQ(on_edge_taken, 0);
   EXPECT_GE(far_out, run.cases / 20);
   EXPECT_GE(no_span, 1);
+}
+
+// OcclusionHorizon::for_each_range's inner rounding, restated.
+BinRange inner_rounding(const AzimuthSpan& s, std::uint32_t bins) {
+  const double w = kTwoPi / bins;
+  return {std::int64_t(std::ceil((s.begin + s.slack) / w)), std::int64_t(std::floor((s.end - s.slack) / w)) - 1};
+}
+
+TEST(ShadowBins, GivenOnlyWhereTheyAreTheSpansInnerRounding) {
+  int taken = 0, empty_taken = 0, declined = 0, wide = 0, near_boundary = 0, near_taken = 0, far_out = 0, polygons = 0;
+  const PropertyOutcome run = run_property("span_inner_bins equals the span's inner rounding", 3000, true, [&] {
+    const std::uint32_t bins = *rc::gen::element(8u, 64u, 1024u, 4096u, 16384u, 1u << 20);
+    const double w = kTwoPi / bins;
+    const double offset = *rc::gen::element(0.0, 1e3, -2.5e5, 1e6, 1e7);
+    auto unit = [] { return *rc::gen::inRange(0, 1000000) / 1e6; };
+    const Vec2 eye{offset + 400.0 * (unit() - 0.5), offset + 400.0 * (unit() - 0.5)};
+    std::vector<Vec2> ring;
+    const int mode = *rc::gen::inRange(0, 4);  // half the cases aim a corner at a boundary
+    if (mode == 0) {  // a convex polygon: n points on a circle, counter-clockwise
+      ++polygons;
+      const int n = *rc::gen::inRange(3, 17);
+      const Vec2 centre{offset + 600.0 * (unit() - 0.5), offset + 600.0 * (unit() - 0.5)};
+      const double r = 1e-3 + 100.0 * unit(), turn = kTwoPi * unit();
+      for (int i = 0; i < n; ++i) {
+        const double a = turn + kTwoPi * (i + 0.8 * unit()) / n;
+        ring.push_back({centre.x + r * std::cos(a), centre.y + r * std::sin(a)});
+      }
+    } else {  // a box, with (modes 2 and 3) a corner seen within a hair of a bin boundary
+      const double width = 1e-3 + 200.0 * unit(), height = 1e-3 + 200.0 * unit();
+      Vec2 lo{offset + 300.0 * (unit() - 0.5), offset + 300.0 * (unit() - 0.5)};
+      if (mode >= 2) {
+        const double k = std::floor(unit() * bins);
+        const double hair = *rc::gen::element(0.0, 1e-15, -1e-15, 1e-13, -1e-13, 2e-12, -2e-12, 5e-12, -5e-12, 1e-11, -1e-11, 1e-9, -1e-9, 1e-6, -1e-6);
+        const double angle = k * w + hair, r = 1.0 + 300.0 * unit();
+        const Vec2 corner{eye.x + r * std::cos(angle), eye.y + r * std::sin(angle)};
+        const int which = *rc::gen::inRange(0, 4);
+        lo = {corner.x - (which == 1 || which == 2 ? width : 0.0), corner.y - (which >= 2 ? height : 0.0)};
+      }
+      const auto corners = box_corners(Box2{lo, {lo.x + width, lo.y + height}});
+      ring.assign(corners.begin(), corners.end());
+    }
+    const std::optional<ConvexSpan> exact = convex_span(ring, eye);
+    if (!exact) return;
+    const Vec2 lo = ring[exact->first_tangent], hi = ring[exact->last_tangent];
+    const Vec2 dlo = lo - eye, dhi = hi - eye;
+    const double llo = length(dlo), lhi = length(dhi);
+    RC_ASSERT(llo == exact->first_distance);
+    RC_ASSERT(lhi == exact->last_distance);
+    const double slack = tangent_slack(lo, hi, eye, llo, lhi);
+    RC_ASSERT(slack == exact->span.slack);
+    const std::optional<BinRange> fast = span_inner_bins(dlo, dhi, slack, OctantBoundaries(bins));
+    const bool near = nearest_boundary(exact->span, bins) < 1e-8;
+    near_boundary += near ? 1 : 0;
+    if (!fast) {
+      ++declined;
+      wide += exact->span.end - exact->span.begin > kPi / 2 - 1e-9 ? 1 : 0;
+      return;
+    }
+    ++taken;
+    near_taken += near ? 1 : 0;
+    far_out += std::abs(eye.x) > 5e6 ? 1 : 0;
+    const BinRange want = inner_rounding(exact->span, bins);
+    RC_ASSERT(fast->first == want.first);
+    RC_ASSERT(fast->last == want.last);
+    empty_taken += fast->first > fast->last ? 1 : 0;
+    // The horizon raised either way holds the same bins.
+    if (bins > 16384u) return;
+    OcclusionHorizon by_span(bins), by_bins(bins);
+    const double slope = unit();
+    by_span.raise(exact->span, slope);
+    by_bins.raise_range(*fast, slope);
+    for (std::int64_t b = want.first - 2; b <= want.last + 2; ++b) {
+      const AzimuthSpan bin{(double(b) + 0.25) * w, (double(b) + 0.75) * w, 0.0};
+      if (!bin.valid()) continue;
+      RC_ASSERT(by_span.min_over(bin) == by_bins.min_over(bin));
+    }
+  });
+  ASSERT_TRUE(run.held);
+  if (reproducing()) return;
+  std::cerr << "cases " << run.cases << ": bins given " << taken << " (empty " << empty_taken << "), declined " << declined
+            << " (spans of a quarter turn or more " << wide << "); ends within 1e-8 rad of a boundary " << near_boundary
+            << " (given " << near_taken << "); given at coordinates near 1e7 " << far_out << "; polygons " << polygons << "\n";
+  EXPECT_GE(taken, run.cases / 2);
+  EXPECT_GE(empty_taken, 1);
+  EXPECT_GE(wide, 1);
+  EXPECT_GE(near_boundary, run.cases / 20);
+  EXPECT_GE(near_taken, 1);
+  EXPECT_GE(far_out, run.cases / 20);
 }
 
 }  // namespace

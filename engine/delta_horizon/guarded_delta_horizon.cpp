@@ -55,6 +55,39 @@ void fix_vertices(const RegionCertificate& certificate, const MotionRegion& regi
   }
 }
 
+// queue_shadows for a certainly visible building: the same shadows in the same order, but where
+// a CVP's tangents are fixed for the region, its shadow carries the bins raise() would take of
+// span_from_tangents' span, found without the span (span_inner_bins: no atan2). Elsewhere, and
+// where those bins are not certain, the span is computed as before.
+template <class FarthestOf>
+void queue_fixed_shadows(ShadowQueue& pending, const Building& building, const DiscVertices* fixed, Vec3 eye,
+                         double distance, double unclipped, const OctantBoundaries& boundaries,
+                         const FarthestOf& farthest_of) {
+  const Vec2 e = plan(eye);
+  const bool may_be_clipped = distance < unclipped;
+  for (std::size_t p = 0; p < building.prisms.size(); ++p) {
+    const ConvexVerticalPrism& prism = building.prisms[p];
+    const std::vector<Vec2>& ring = prism.ring;
+    const DiscVertices& v = fixed[p];
+    if (v.tangents_fixed()) {
+      const Vec2 lo = ring[v.first_tangent], hi = ring[v.last_tangent];
+      const Vec2 dlo = lo - e, dhi = hi - e;
+      const double llo = length(dlo), lhi = length(dhi);
+      if (const auto bins = span_inner_bins(dlo, dhi, tangent_slack(lo, hi, e, llo, lhi), boundaries)) {
+        if (may_be_clipped && min_boundary_distance(ring, e) < unclipped) continue;
+        const ConvexSpan tangents{{}, v.first_tangent, v.last_tangent, llo, lhi};  // what shadow_slope reads
+        const double farthest = farthest_of(p), slope = shadow_slope(ShadowRule::conservative, prism, eye, tangents);
+        if (usable_shadow(farthest, slope)) pending.push(farthest, *bins, slope);
+        continue;
+      }
+    }
+    const auto span = span_from_tangents(ring.data(), ring.size(), v, e);
+    if (!span || (may_be_clipped && min_boundary_distance(ring, e) < unclipped)) continue;
+    const double farthest = farthest_of(p), slope = shadow_slope(ShadowRule::conservative, prism, eye, *span);
+    if (usable_shadow(farthest, slope)) pending.push(farthest, span->span, slope);
+  }
+}
+
 }  // namespace
 
 GuardedDeltaHorizonCulling::GuardedDeltaHorizonCulling(const Scene& scene, const MethodOptions& options)
@@ -157,18 +190,17 @@ CullResult GuardedDeltaHorizonCulling::cull(const Camera& camera) {
       return distance_to_edge(ring.data(), ring.size(), fixed[p], e);
     };
     if (current_->certainly_visible(b)) {
-      spans.clear();
-      for (std::size_t p = 0; p < building.prisms.size(); ++p) spans.push_back(span_of(p));
-    } else {
-      ++stats.buildings_tested;
-      if (!volume.may_intersect(building.bounds)) continue;
-      // The box's bins without its span where box_outer_bins is certain of them (box_hidden),
-      // which reads no tangent: span_from_tangents gives box_span's span bit for bit.
-      if (box_hidden(horizon_, building.bounds.plan(), building.height, eye) ||
-          !prisms_visible(horizon_, building, eye, spans, span_of, nearest_of, farthest_of))
-        continue;
-      found.push_back(b);
+      queue_fixed_shadows(pending, building, fixed, eye, swept.distance, unclipped, horizon_.octant_boundaries(), farthest_of);
+      continue;
     }
+    ++stats.buildings_tested;
+    if (!volume.may_intersect(building.bounds)) continue;
+    // The box's bins without its span where box_outer_bins is certain of them (box_hidden),
+    // which reads no tangent: span_from_tangents gives box_span's span bit for bit.
+    if (box_hidden(horizon_, building.bounds.plan(), building.height, eye) ||
+        !prisms_visible(horizon_, building, eye, spans, span_of, nearest_of, farthest_of))
+      continue;
+    found.push_back(b);
     queue_shadows(pending, ShadowRule::conservative, building, eye, swept.distance, unclipped, spans, farthest_of);
   }
   stats.horizon_nodes += horizon_.take_node_visits();

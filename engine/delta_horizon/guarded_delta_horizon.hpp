@@ -27,7 +27,9 @@
 // Fixed vertices (issue 17): with each certificate, the swept buildings' tangent and farthest
 // vertices and the edges that can be nearest are found for the whole region where they provably
 // do not change in it (disc_vertices), so a frame reads a few vertices for a span and its
-// distances instead of walking every ring; the values are OH(OS)'s bit for bit.
+// distances instead of walking every ring; the values are OH(OS)'s bit for bit. A certainly
+// visible building's shadow is queued with the bins raise() would round its span to, found from
+// the fixed tangents without the span where that is certain (span_inner_bins, box_bins.hpp).
 // horizon() materialises the horizon OH(OS) would leave (every visible building's shadows) on
 // demand; the per-frame sweep only builds it where uncertain buildings need it.
 // Statistics: items_skipped counts buildings decided without a test; guard_fires is 1 on

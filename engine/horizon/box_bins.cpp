@@ -128,4 +128,23 @@ std::optional<BinRange> box_outer_bins(const Box2& box, Vec2 e, const OctantBoun
   return BinRange{first.bin, last.bin < first.bin ? last.bin + bins : last.bin};
 }
 
+std::optional<BinRange> span_inner_bins(Vec2 dlo, Vec2 dhi, double slack, const OctantBoundaries& boundaries) {
+  const std::vector<Vec2>& unit = boundaries.unit();
+  // span_between's width is fast_atan2(cross, dot): in [0, π/2] for these, so it gives a span.
+  if (unit.empty() || !(cross(dlo, dhi) > 0.0) || !(dot(dlo, dhi) > 0.0)) return std::nullopt;
+  if (!(slack >= 0.0) || !(slack + kGap < 0.25 * boundaries.width())) return std::nullopt;
+  const Octant olo = octant_of(dlo), ohi = octant_of(dhi);
+  const double inverse = 1.0 / (olo.X * ohi.X);
+  const auto q = static_cast<std::int64_t>(unit.size()) - 1;
+  const double per_radian = boundaries.bins_per_radian();
+  const DirectionBin first = direction_bin(dlo, olo, olo.Y * ohi.X * inverse, unit.data(), q, per_radian);
+  const DirectionBin last = direction_bin(dhi, ohi, ohi.Y * olo.X * inverse, unit.data(), q, per_radian);
+  // ceil((begin + slack) / w) is one past begin's bin when begin + slack stays inside it;
+  // floor((end - slack) / w) is end's bin when end - slack does.
+  if (!first.clear_of(kGap, slack + kGap) || !last.clear_of(slack + kGap, kGap)) return std::nullopt;
+  const auto bins = static_cast<std::int64_t>(boundaries.bins());
+  const std::int64_t end_bin = last.bin < first.bin ? last.bin + bins : last.bin;  // end may run past 2π
+  return BinRange{first.bin + 1, end_bin - 1};
+}
+
 }  // namespace cullcheck

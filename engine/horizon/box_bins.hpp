@@ -1,4 +1,5 @@
-// The horizon bins an axis-aligned box's azimuth span touches, found without the span (issue 17:
+// The horizon bins an axis-aligned box's azimuth span touches, and those a shadow raises, found
+// without the span (issue 17:
 // box_span's two atan2 were a quarter of a VbAoI graph, where every quadtree cell and building
 // box is tested from some 280,000 eyes).
 //
@@ -50,5 +51,14 @@ struct BinRange {
 // The outer rounding of box_span(box, eye)'s span on `boundaries`' bins, when it is certain
 // (see above); nullopt otherwise.
 std::optional<BinRange> box_outer_bins(const Box2& box, Vec2 eye, const OctantBoundaries& boundaries);
+
+// A shadow's bins the same way (the guarded ΔH's certainly visible buildings, whose tangent
+// vertices are fixed for its region): the inner rounding ceil((begin + slack) / w) ..
+// floor((end - slack) / w) - 1 that OcclusionHorizon::raise takes of the span span_between
+// gives for the tangent directions `dlo` and `dhi` (tangent vertex - eye) and its `slack`. Given
+// only when the span is certain to exist and lie below a quarter turn (cross and dot products of
+// the directions positive) and both ends clear their bins' boundaries by the slack plus 1e-11
+// rad; an empty rounding (first > last) is an answer too: nothing is raised.
+std::optional<BinRange> span_inner_bins(Vec2 dlo, Vec2 dhi, double slack, const OctantBoundaries& boundaries);
 
 }  // namespace cullcheck

@@ -49,8 +49,23 @@ double unclipped_distance(const Camera& camera);
 // distance, or later where a method delays it).
 struct Shadow {
   double farthest;
-  AzimuthSpan span;
+  AzimuthSpan span;  // rounded inward by the horizon, unless `by_bins`
   double slope;
+  // With `by_bins`, that rounding itself (span_inner_bins, box_bins.hpp, where a caller found it
+  // without the span): bins first_bin .. last_bin of a horizon with as many bins as the one it
+  // was found for (every horizon of a method has MethodOptions::horizon_bins). Below 2^21.
+  std::int32_t first_bin = 0, last_bin = -1;
+  bool by_bins = false;
+
+  static Shadow of_bins(double farthest, const BinRange& bins, double slope) {
+    return {farthest, AzimuthSpan{}, slope, std::int32_t(bins.first), std::int32_t(bins.last), true};
+  }
+  void raise(OcclusionHorizon& horizon, double at_slope) const {
+    if (by_bins)
+      horizon.raise_range({first_bin, last_bin}, at_slope);
+    else
+      horizon.raise(span, at_slope);
+  }
 };
 
 // Shadows waiting until the sweep passes their CVP's farthest point; merged in that order.
@@ -66,9 +81,12 @@ class ShadowQueue {
     replay_next_ = 0;
   }
   void record_into(std::vector<Shadow>* log) { log_ = log; }
-  void push(double farthest, const AzimuthSpan& span, double slope) {
-    queue_.push({farthest, span, slope, order_++});
-    if (log_) log_->push_back({farthest, span, slope});
+  void push(double farthest, const AzimuthSpan& span, double slope) { push(Shadow{farthest, span, slope}); }
+  // A shadow whose inner rounding is known (span_inner_bins): its span is never read.
+  void push(double farthest, const BinRange& bins, double slope) { push(Shadow::of_bins(farthest, bins, slope)); }
+  void push(const Shadow& shadow) {
+    queue_.push({shadow, order_++});
+    if (log_) log_->push_back(shadow);
   }
   // Queues a whole log at once (a passive-target sweep replaying a building sweep's shadows):
   // sorted once by farthest point instead of pushed one by one. Merging is a maximum, so the
@@ -82,14 +100,13 @@ class ShadowQueue {
   // and, when given, into `also` (ΔH raises H(t+1) and its mask together).
   void merge_nearer_than(double distance, OcclusionHorizon& horizon, CullStatistics& stats,
                          OcclusionHorizon* also = nullptr) {
-    auto merge = [&](const AzimuthSpan& span, double slope) {
-      horizon.raise(span, slope);
-      if (also) also->raise(span, slope);
+    auto merge = [&](const Shadow& shadow) {
+      shadow.raise(horizon, shadow.slope);
+      if (also) shadow.raise(*also, shadow.slope);
       ++stats.occluders_applied;
     };
-    for (; replay_next_ < replay_.size() && replay_[replay_next_].farthest < distance; ++replay_next_)
-      merge(replay_[replay_next_].span, replay_[replay_next_].slope);
-    for (; !queue_.empty() && queue_.top().farthest < distance; queue_.pop()) merge(queue_.top().span, queue_.top().slope);
+    for (; replay_next_ < replay_.size() && replay_[replay_next_].farthest < distance; ++replay_next_) merge(replay_[replay_next_]);
+    for (; !queue_.empty() && queue_.top().shadow.farthest < distance; queue_.pop()) merge(queue_.top().shadow);
   }
   void merge_all(OcclusionHorizon& horizon, CullStatistics& stats, OcclusionHorizon* also = nullptr) {
     merge_nearer_than(HUGE_VAL, horizon, stats, also);
@@ -97,11 +114,11 @@ class ShadowQueue {
 
  private:
   struct Pending {
-    double farthest;
-    AzimuthSpan span;
-    double slope;
+    Shadow shadow;
     std::uint64_t order;  // insertion order, for a deterministic tie-break
-    bool operator>(const Pending& o) const { return farthest != o.farthest ? farthest > o.farthest : order > o.order; }
+    bool operator>(const Pending& o) const {
+      return shadow.farthest != o.shadow.farthest ? shadow.farthest > o.shadow.farthest : order > o.order;
+    }
   };
   QuadHeap<Pending> queue_;
   std::uint64_t order_ = 0;

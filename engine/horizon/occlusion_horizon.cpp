@@ -159,6 +159,11 @@ void OcclusionHorizon::raise(const AzimuthSpan& span, double slope) {
   for_each_range(span, /*inner=*/true, [&](std::uint32_t a, std::uint32_t b) { raise_bins(a, b, slope); });
 }
 
+void OcclusionHorizon::raise_range(const BinRange& range, double slope) {
+  if (std::isnan(slope)) return;
+  for_each_bin_range(double(range.first), double(range.last), [&](std::uint32_t a, std::uint32_t b) { raise_bins(a, b, slope); });
+}
+
 // An empty or invalid rounding reads no bin and so proves nothing: the loosest bound.
 double OcclusionHorizon::min_over(const AzimuthSpan& span) {
   double m = kAll;

@@ -85,6 +85,8 @@ class OcclusionHorizon {
   // Callers that compute shadows from geometry pass finite slopes only (a non-finite one comes
   // from degenerate geometry and must not hide anything).
   void raise(const AzimuthSpan& span, double slope);
+  // raise() over bins already rounded inward: `range` as span_inner_bins gives it.
+  void raise_range(const BinRange& range, double slope);
   // True when an object whose every point over `span` has slope below `max_slope` is hidden:
   // max_slope < min H over every bin touched by `span`. False when max_slope is not finite.
   bool hides(const AzimuthSpan& span, double max_slope);

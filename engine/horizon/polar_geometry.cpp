@@ -31,12 +31,7 @@ std::optional<ConvexSpan> span_between(const Vec2* ring, std::size_t n, std::siz
       if (!(dot(ring[i] - eye, bisector) > 0.0)) return std::nullopt;
   }
   const double begin = fast_azimuth(dlo);
-  // Both ends are azimuths of tangent vertices: their rounding grows with the coordinates'
-  // magnitude and shrinks with the vertices' distance (angular_slack).
-  const double magnitude = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(ring[lo].x), std::abs(ring[lo].y),
-                                     std::abs(ring[hi].x), std::abs(ring[hi].y)});
-  const double slack = angular_slack(magnitude, std::min(llo, lhi));
-  return ConvexSpan{{begin, begin + width, slack}, lo, hi, llo, lhi};
+  return ConvexSpan{{begin, begin + width, tangent_slack(ring[lo], ring[hi], eye, llo, lhi)}, lo, hi, llo, lhi};
 }
 
 // The span of a convex polygon's vertices seen from an eye outside it. Every direction then
@@ -96,6 +91,13 @@ std::optional<ConvexSpan> span_of_directions(const std::vector<Vec2>& directions
 }
 
 }  // namespace
+
+double tangent_slack(Vec2 lo, Vec2 hi, Vec2 eye, double lo_distance, double hi_distance) {
+  // Both ends are azimuths of tangent vertices: their rounding grows with the coordinates'
+  // magnitude and shrinks with the vertices' distance (angular_slack).
+  const double magnitude = std::max({std::abs(eye.x), std::abs(eye.y), std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
+  return angular_slack(magnitude, std::min(lo_distance, hi_distance));
+}
 
 std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye) {
   return span_of_convex(ring.data(), ring.size(), eye);

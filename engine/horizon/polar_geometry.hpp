@@ -27,6 +27,9 @@ struct ConvexSpan {
   double first_distance = 0.0, last_distance = 0.0;
 };
 std::optional<ConvexSpan> convex_span(const std::vector<Vec2>& ring, Vec2 eye);
+// The slack of the span between tangent vertices `lo` and `hi` seen from `eye`, at the given
+// distances (length(lo - eye), length(hi - eye)): what convex_span gives its span.
+double tangent_slack(Vec2 lo, Vec2 hi, Vec2 eye, double lo_distance, double hi_distance);
 std::optional<ConvexSpan> convex_span(const Vec2* ring, std::size_t n, Vec2 eye);
 std::optional<ConvexSpan> box_span(const Box2& box, Vec2 eye);
 // A box's corners counter-clockwise from its low corner: the ring box_span takes.

@@ -135,7 +135,7 @@ std::optional<std::vector<ObjectId>> PassiveTargets::visible_at_eye_height(const
   horizon_.reset();
   horizon_.take_node_visits();
   for (const Shadow& s : shadows)
-    if (s.slope > 0.0) horizon_.raise(s.span, -s.farthest);
+    if (s.slope > 0.0) s.raise(horizon_, -s.farthest);
   const ViewVolume volume(region.camera);
   const bool every_box_meets = meets_every_box(volume, quadtree_.extent(), region.radius);
   auto meets = [&](const Box3& box) { return every_box_meets || may_meet(volume, box, region.radius, region.turn); };
