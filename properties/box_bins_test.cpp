@@ -40,13 +40,34 @@ double nearest_boundary(const AzimuthSpan& s, std::uint32_t bins) {
   return std::min(off(s.begin), off(s.end));
 }
 
+// One case's draws both properties share: a bin count, a coordinate offset and a uniform
+// number in [0, 1] per call.
+struct Draw {
+  std::uint32_t bins = *rc::gen::element(8u, 64u, 1024u, 4096u, 16384u, 1u << 20);
+  double w = kTwoPi / bins;
+  double offset = *rc::gen::element(0.0, 1e3, -2.5e5, 1e6, 1e7);
+  static double unit() { return *rc::gen::inRange(0, 1000000) / 1e6; }
+};
+
+// The low corner of a width x height box one of whose corners the eye sees within a hair (1e-15
+// to 1e-6 rad, or none) of a bin boundary.
+Vec2 box_with_a_corner_at_a_boundary(const Draw& d, Vec2 eye, double width, double height) {
+  const double k = std::floor(d.unit() * d.bins);
+  const double hair = *rc::gen::element(0.0, 1e-15, -1e-15, 1e-13, -1e-13, 2e-12, -2e-12, 5e-12, -5e-12, 1e-11, -1e-11, 1e-9, -1e-9, 1e-6, -1e-6);
+  const double angle = k * d.w + hair, r = 1.0 + 300.0 * d.unit();
+  const Vec2 corner{eye.x + r * std::cos(angle), eye.y + r * std::sin(angle)};
+  // The corner is the box's low, right, high or left corner.
+  const int which = *rc::gen::inRange(0, 4);
+  return {corner.x - (which == 1 || which == 2 ? width : 0.0), corner.y - (which >= 2 ? height : 0.0)};
+}
+
 TEST(BoxBins, GivenOnlyWhereTheyAreTheSpansOuterRounding) {
   int taken = 0, declined = 0, no_span = 0, near_boundary = 0, near_taken = 0, on_edge_line = 0, on_edge_taken = 0, far_out = 0;
   const PropertyOutcome run = run_property("box_outer_bins equals the span's outer rounding", 3000, true, [&] {
-    const std::uint32_t bins = *rc::gen::element(8u, 64u, 1024u, 4096u, 16384u, 1u << 20);
-    const double w = kTwoPi / bins;
-    const double offset = *rc::gen::element(0.0, 1e3, -2.5e5, 1e6, 1e7);
-    auto unit = [] { return *rc::gen::inRange(0, 1000000) / 1e6; };
+    const Draw draw;
+    const std::uint32_t bins = draw.bins;
+    const double w = draw.w, offset = draw.offset;
+    auto unit = &Draw::unit;
     const double width = 1e-3 + 200.0 * unit(), height = 1e-3 + 200.0 * unit();
     const int mode = *rc::gen::inRange(0, 3);
     Vec2 eye{offset + 400.0 * (unit() - 0.5), offset + 400.0 * (unit() - 0.5)};
@@ -61,13 +82,7 @@ TEST(BoxBins, GivenOnlyWhereTheyAreTheSpansOuterRounding) {
       if (edge == 2) eye.x = box.lo.x;
       if (edge == 3) eye.x = box.lo.x + width;
     } else {  // a corner seen within a hair of a bin boundary
-      const double k = std::floor(unit() * bins);
-      const double hair = *rc::gen::element(0.0, 1e-15, -1e-15, 1e-13, -1e-13, 2e-12, -2e-12, 5e-12, -5e-12, 1e-11, -1e-11, 1e-9, -1e-9, 1e-6, -1e-6);
-      const double angle = k * w + hair, r = 1.0 + 300.0 * unit();
-      const Vec2 corner{eye.x + r * std::cos(angle), eye.y + r * std::sin(angle)};
-      // The corner is the box's low, right, high or left corner.
-      const int which = *rc::gen::inRange(0, 4);
-      box.lo = {corner.x - (which == 1 || which == 2 ? width : 0.0), corner.y - (which >= 2 ? height : 0.0)};
+      box.lo = box_with_a_corner_at_a_boundary(draw, eye, width, height);
     }
     box.hi = {box.lo.x + width, box.lo.y + height};
 
@@ -131,10 +146,10 @@ BinRange inner_rounding(const AzimuthSpan& s, std::uint32_t bins) {
 TEST(ShadowBins, GivenOnlyWhereTheyAreTheSpansInnerRounding) {
   int taken = 0, empty_taken = 0, declined = 0, wide = 0, near_boundary = 0, near_taken = 0, far_out = 0, polygons = 0;
   const PropertyOutcome run = run_property("span_inner_bins equals the span's inner rounding", 3000, true, [&] {
-    const std::uint32_t bins = *rc::gen::element(8u, 64u, 1024u, 4096u, 16384u, 1u << 20);
-    const double w = kTwoPi / bins;
-    const double offset = *rc::gen::element(0.0, 1e3, -2.5e5, 1e6, 1e7);
-    auto unit = [] { return *rc::gen::inRange(0, 1000000) / 1e6; };
+    const Draw draw;
+    const std::uint32_t bins = draw.bins;
+    const double w = draw.w, offset = draw.offset;
+    auto unit = &Draw::unit;
     const Vec2 eye{offset + 400.0 * (unit() - 0.5), offset + 400.0 * (unit() - 0.5)};
     std::vector<Vec2> ring;
     const int mode = *rc::gen::inRange(0, 4);  // half the cases aim a corner at a boundary
@@ -150,14 +165,7 @@ TEST(ShadowBins, GivenOnlyWhereTheyAreTheSpansInnerRounding) {
     } else {  // a box, with (modes 2 and 3) a corner seen within a hair of a bin boundary
       const double width = 1e-3 + 200.0 * unit(), height = 1e-3 + 200.0 * unit();
       Vec2 lo{offset + 300.0 * (unit() - 0.5), offset + 300.0 * (unit() - 0.5)};
-      if (mode >= 2) {
-        const double k = std::floor(unit() * bins);
-        const double hair = *rc::gen::element(0.0, 1e-15, -1e-15, 1e-13, -1e-13, 2e-12, -2e-12, 5e-12, -5e-12, 1e-11, -1e-11, 1e-9, -1e-9, 1e-6, -1e-6);
-        const double angle = k * w + hair, r = 1.0 + 300.0 * unit();
-        const Vec2 corner{eye.x + r * std::cos(angle), eye.y + r * std::sin(angle)};
-        const int which = *rc::gen::inRange(0, 4);
-        lo = {corner.x - (which == 1 || which == 2 ? width : 0.0), corner.y - (which >= 2 ? height : 0.0)};
-      }
+      if (mode >= 2) lo = box_with_a_corner_at_a_boundary(draw, eye, width, height);
       const auto corners = box_corners(Box2{lo, {lo.x + width, lo.y + height}});
       ring.assign(corners.begin(), corners.end());
     }

@@ -133,6 +133,8 @@ std::optional<BinRange> span_inner_bins(Vec2 dlo, Vec2 dhi, double slack, const 
   // span_between's width is fast_atan2(cross, dot): in [0, π/2] for these, so it gives a span.
   if (unit.empty() || !(cross(dlo, dhi) > 0.0) || !(dot(dlo, dhi) > 0.0)) return std::nullopt;
   if (!(slack >= 0.0) || !(slack + kGap < 0.25 * boundaries.width())) return std::nullopt;
+  // box_outer_bins' bin guesses, written out again: a helper shared by both, returning the two
+  // bins, made the VbAoI graph 8-10% slower (20 x 20 blocks: 14.8-16.7 s against 13.8-15.0 s).
   const Octant olo = octant_of(dlo), ohi = octant_of(dhi);
   const double inverse = 1.0 / (olo.X * ohi.X);
   const auto q = static_cast<std::int64_t>(unit.size()) - 1;

@@ -1,7 +1,6 @@
 // The horizon bins an axis-aligned box's azimuth span touches, and those a shadow raises, found
-// without the span (issue 17:
-// box_span's two atan2 were a quarter of a VbAoI graph, where every quadtree cell and building
-// box is tested from some 280,000 eyes).
+// without the span (issue 17: box_span's two atan2 were a quarter of a VbAoI graph, where every
+// quadtree cell and building box is tested from some 280,000 eyes).
 //
 // box_hidden tests a box by the bins OcclusionHorizon::hides reads for box_span(box, eye): the
 // outer rounding floor((begin - slack) / w) .. floor((end + slack) / w) of its span. Those two
