@@ -74,17 +74,15 @@ void queue_fixed_shadows(ShadowQueue& pending, const Building& building, const D
       const Vec2 dlo = lo - e, dhi = hi - e;
       const double llo = length(dlo), lhi = length(dhi);
       if (const auto bins = span_inner_bins(dlo, dhi, tangent_slack(lo, hi, e, llo, lhi), boundaries)) {
-        if (may_be_clipped && min_boundary_distance(ring, e) < unclipped) continue;
         const ConvexSpan tangents{{}, v.first_tangent, v.last_tangent, llo, lhi};  // what shadow_slope reads
-        const double farthest = farthest_of(p), slope = shadow_slope(ShadowRule::conservative, prism, eye, tangents);
-        if (usable_shadow(farthest, slope)) pending.push(farthest, *bins, slope);
+        queue_prism_shadow(pending, ShadowRule::conservative, prism, p, eye, may_be_clipped, unclipped, tangents, *bins,
+                           farthest_of);
         continue;
       }
     }
-    const auto span = span_from_tangents(ring.data(), ring.size(), v, e);
-    if (!span || (may_be_clipped && min_boundary_distance(ring, e) < unclipped)) continue;
-    const double farthest = farthest_of(p), slope = shadow_slope(ShadowRule::conservative, prism, eye, *span);
-    if (usable_shadow(farthest, slope)) pending.push(farthest, span->span, slope);
+    if (const auto span = span_from_tangents(ring.data(), ring.size(), v, e))
+      queue_prism_shadow(pending, ShadowRule::conservative, prism, p, eye, may_be_clipped, unclipped, *span, span->span,
+                         farthest_of);
   }
 }
 

@@ -231,21 +231,30 @@ bool prisms_visible(Horizon& horizon, const Building& building, Vec3 eye, std::v
 // comes from degenerate input (overflowing coordinates, a zero distance) and must hide nothing.
 inline bool usable_shadow(double farthest, double slope) { return std::isfinite(farthest) && std::isfinite(slope); }
 
-// Queues a visible building's shadows. `distance` is its nearest plan distance; a CVP that may
-// reach in front of the near plane, or that holds the eye (no span), casts none; nor does one
-// whose shadow is not usable_shadow.
-// `farthest_of(p)` is max_vertex_distance of CVP p from the eye, however the caller finds it.
+// Queues the shadow of CVP `p` of a visible building, whose span is `span` (shadow_slope reads
+// its tangents only), filed under `at`: the span's azimuths, or the bins raise() would round them
+// to (ShadowQueue::push takes either). None when the CVP may reach in front of the near plane
+// (`may_be_clipped`: the building's nearest distance is below `unclipped`) or the shadow is not
+// usable_shadow. `farthest_of(p)` is max_vertex_distance of the CVP from the eye.
+template <class At, class FarthestOf>
+inline void queue_prism_shadow(ShadowQueue& pending, ShadowRule rule, const ConvexVerticalPrism& prism, std::size_t p,
+                               Vec3 eye, bool may_be_clipped, double unclipped, const ConvexSpan& span, const At& at,
+                               const FarthestOf& farthest_of) {
+  if (may_be_clipped && min_boundary_distance(prism.ring, plan(eye)) < unclipped) return;
+  const double farthest = farthest_of(p), slope = shadow_slope(rule, prism, eye, span);
+  if (usable_shadow(farthest, slope)) pending.push(farthest, at, slope);
+}
+
+// Queues a visible building's shadows (queue_prism_shadow for each CVP that has a span; one that
+// holds the eye has none and casts none). `distance` is its nearest plan distance.
 template <class FarthestOf>
 void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
                    double unclipped, const std::vector<std::optional<ConvexSpan>>& spans, const FarthestOf& farthest_of) {
-  const Vec2 e = plan(eye);
   const bool may_be_clipped = distance < unclipped;
-  for (std::size_t p = 0; p < building.prisms.size(); ++p) {
-    const ConvexVerticalPrism& prism = building.prisms[p];
-    if (!spans[p] || (may_be_clipped && min_boundary_distance(prism.ring, e) < unclipped)) continue;
-    const double farthest = farthest_of(p), slope = shadow_slope(rule, prism, eye, *spans[p]);
-    if (usable_shadow(farthest, slope)) pending.push(farthest, spans[p]->span, slope);
-  }
+  for (std::size_t p = 0; p < building.prisms.size(); ++p)
+    if (spans[p])
+      queue_prism_shadow(pending, rule, building.prisms[p], p, eye, may_be_clipped, unclipped, *spans[p], spans[p]->span,
+                         farthest_of);
 }
 inline void queue_shadows(ShadowQueue& pending, ShadowRule rule, const Building& building, Vec3 eye, double distance,
                           double unclipped, const std::vector<std::optional<ConvexSpan>>& spans) {
