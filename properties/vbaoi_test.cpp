@@ -227,6 +227,58 @@ TEST(NavigationGraph, PvsnSymmetryByIntersectionIsWithinUnion) {
   EXPECT_THROW(parse_pvs_n_symmetry("sideways"), std::invalid_argument);
 }
 
+// make_pvs_n_symmetric on drawn lists, held to the definition (B stays in A's list by
+// intersection iff A is in B's raw list; union adds A to B's when A lists B), for mirror budgets
+// from one entry (a block per node, each list handed out over many passes) to all of them. The
+// graphs above fit one block; Boston's 690 million entries take about 22.
+TEST(NavigationGraph, SymmetricPvsnByBlocksEqualsTheDefinition) {
+  std::size_t cases = 0, multi_block = 0, one_sided_seen = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    Random rng(seed);
+    const std::size_t n = static_cast<std::size_t>(rng.uniform_int(0, 40));
+    const double density = rng.uniform01();
+    std::vector<std::vector<NodeId>> raw(n);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b)
+        // Mostly mutual, as a graph's lists are, with one-sided entries both ways.
+        if (rng.bernoulli(density)) raw[a].push_back(static_cast<NodeId>(b));
+    for (std::size_t a = 0; a < n; ++a)
+      for (NodeId b : raw[a])
+        if (b < a && rng.bernoulli(0.7) && !std::binary_search(raw[b].begin(), raw[b].end(), static_cast<NodeId>(a))) {
+          raw[b].insert(std::lower_bound(raw[b].begin(), raw[b].end(), static_cast<NodeId>(a)), static_cast<NodeId>(a));
+        }
+    auto listed = [&](std::size_t a, std::size_t b) { return std::binary_search(raw[a].begin(), raw[a].end(), static_cast<NodeId>(b)); };
+    std::vector<std::vector<NodeId>> both(n), either(n);
+    std::uint64_t one_sided = 0;
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b) {
+        if (listed(a, b) && listed(b, a)) both[a].push_back(static_cast<NodeId>(b));
+        if (listed(a, b) || listed(b, a)) either[a].push_back(static_cast<NodeId>(b));
+        one_sided += listed(a, b) && !listed(b, a);
+      }
+    one_sided_seen += one_sided > 0;
+    for (const std::size_t budget : {std::size_t{1}, std::size_t{7}, std::size_t{100}, kMirrorEntries})
+      for (const PvsnSymmetry symmetry : {PvsnSymmetry::intersection, PvsnSymmetry::union_of_both}) {
+        std::vector<NavigationNode> nodes(n);
+        std::size_t entries = 0;
+        for (std::size_t a = 0; a < n; ++a) nodes[a].id = static_cast<NodeId>(a), nodes[a].pvs_n = raw[a], entries += raw[a].size();
+        const std::uint64_t counted = make_pvs_n_symmetric(nodes, symmetry, budget);
+        const std::string where = "seed " + std::to_string(seed) + ", budget " + std::to_string(budget) + ", " +
+                                  std::string(pvs_n_symmetry_name(symmetry)) +
+                                  " (replay: vbaoi_test --gtest_filter='*SymmetricPvsnByBlocks*')";
+        EXPECT_EQ(counted, one_sided) << where;
+        for (std::size_t a = 0; a < n; ++a)
+          EXPECT_EQ(nodes[a].pvs_n, symmetry == PvsnSymmetry::intersection ? both[a] : either[a]) << where << ", node " << a;
+        ++cases;
+        multi_block += budget < entries;
+      }
+  }
+  // The hard cases were reached: lists handed out over several blocks, and one-sided entries.
+  EXPECT_EQ(cases, 480u);
+  EXPECT_EQ(multi_block, 288u);
+  EXPECT_EQ(one_sided_seen, 55u);  // of the 60 draws
+}
+
 // The checker itself: each broken rule is named.
 TEST(NavigationGraph, InvariantCheckerNamesEachBrokenRule) {
   const Scene scene = generators::make_city("manhattan", 3, {{"blocks_x", 2}, {"blocks_y", 1}});

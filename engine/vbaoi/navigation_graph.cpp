@@ -33,63 +33,6 @@ void sorted_insert(std::vector<NodeId>& v, NodeId x, std::uint64_t& added) {
   ++added;
 }
 
-// Makes the raw PVSn lists symmetric (header: intersection or union) in place and returns how
-// many entries were one-sided. An entry B of A's list is two-sided when A is in B's raw list,
-// found by a binary search there; every entry is judged (one bit each, on `threads` threads)
-// before any list changes. No mirrored copy of the lists is made: at Boston's size (193,326
-// nodes) the raw lists hold about 600 million entries, and that copy doubled the graph's peak.
-std::uint64_t make_pvs_n_symmetric(std::vector<NavigationNode>& nodes, PvsnSymmetry symmetry, unsigned threads) {
-  std::vector<std::vector<bool>> two_sided(nodes.size());
-  std::vector<std::uint64_t> one_sided(threads, 0);
-  std::vector<std::vector<std::pair<NodeId, NodeId>>> mirrors(threads);  // (B, A): union adds A to B's list
-  std::atomic<std::size_t> next{0};
-  auto judge = [&](unsigned t) {
-    constexpr std::size_t kChunk = 256;
-    for (std::size_t first = next.fetch_add(kChunk); first < nodes.size(); first = next.fetch_add(kChunk))
-      for (std::size_t i = first; i < std::min(nodes.size(), first + kChunk); ++i) {
-        const std::vector<NodeId>& listed = nodes[i].pvs_n;
-        std::vector<bool>& flags = two_sided[i];
-        flags.resize(listed.size());
-        for (std::size_t k = 0; k < listed.size(); ++k) {
-          const std::vector<NodeId>& back = nodes[listed[k]].pvs_n;
-          flags[k] = std::binary_search(back.begin(), back.end(), static_cast<NodeId>(i));
-          if (flags[k]) continue;
-          ++one_sided[t];
-          if (symmetry == PvsnSymmetry::union_of_both) mirrors[t].emplace_back(listed[k], static_cast<NodeId>(i));
-        }
-      }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(judge, t);
-  judge(0);
-  for (std::thread& th : pool) th.join();
-
-  if (symmetry == PvsnSymmetry::intersection) {
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      std::vector<NodeId>& listed = nodes[i].pvs_n;
-      std::size_t kept = 0;
-      for (std::size_t k = 0; k < listed.size(); ++k)
-        if (two_sided[i][k]) listed[kept++] = listed[k];
-      listed.resize(kept);
-      listed.shrink_to_fit();
-    }
-  } else {
-    // Sorted, so the lists come out the same for any thread count.
-    std::vector<std::pair<NodeId, NodeId>> added;
-    for (auto& m : mirrors) added.insert(added.end(), m.begin(), m.end());
-    std::sort(added.begin(), added.end());
-    for (std::size_t a = 0; a < added.size();) {
-      std::vector<NodeId>& listed = nodes[added[a].first].pvs_n;
-      const std::size_t before = listed.size();
-      for (const NodeId owner = added[a].first; a < added.size() && added[a].first == owner; ++a) listed.push_back(added[a].second);
-      std::inplace_merge(listed.begin(), listed.begin() + static_cast<std::ptrdiff_t>(before), listed.end());
-    }
-  }
-  std::uint64_t total = 0;
-  for (std::uint64_t c : one_sided) total += c;
-  return total;
-}
-
 }  // namespace
 
 std::string_view pvs_n_symmetry_name(PvsnSymmetry s) { return s == PvsnSymmetry::intersection ? "intersection" : "union"; }
@@ -98,6 +41,59 @@ PvsnSymmetry parse_pvs_n_symmetry(std::string_view name) {
   if (name == "intersection") return PvsnSymmetry::intersection;
   if (name == "union") return PvsnSymmetry::union_of_both;
   throw std::invalid_argument("unknown PVSn symmetry '" + std::string(name) + "' (known: intersection, union)");
+}
+
+std::uint64_t make_pvs_n_symmetric(std::vector<NavigationNode>& nodes, PvsnSymmetry symmetry, std::size_t mirror_entries) {
+  const std::size_t n = nodes.size();
+  std::vector<std::vector<NodeId>> changes(n);  // per node: entries to drop (intersection) or add (union), sorted
+  std::vector<std::size_t> cursor(n, 0);        // per list: its first entry not yet given to a block
+  std::vector<std::vector<NodeId>> mirror;      // per node of the block: the nodes that list it, ascending
+  std::uint64_t one_sided = 0;
+  for (std::size_t first = 0; first < n;) {
+    // A block whose own lists hold about the budget; a symmetric graph's mirror holds as many.
+    std::size_t last = first, entries = 0;
+    do entries += nodes[last++].pvs_n.size();
+    while (last < n && entries + nodes[last].pvs_n.size() <= mirror_entries);
+    mirror.assign(last - first, {});
+    for (std::size_t a = 0; a < n; ++a) {
+      const std::vector<NodeId>& listed = nodes[a].pvs_n;
+      std::size_t& k = cursor[a];
+      for (; k < listed.size() && listed[k] < last; ++k) mirror[listed[k] - first].push_back(static_cast<NodeId>(a));
+    }
+    for (std::size_t b = first; b < last; ++b) {
+      const std::vector<NodeId>& own = nodes[b].pvs_n;
+      const std::vector<NodeId>& listers = mirror[b - first];
+      if (symmetry == PvsnSymmetry::intersection)
+        std::set_difference(own.begin(), own.end(), listers.begin(), listers.end(), std::back_inserter(changes[b]));
+      else
+        std::set_difference(listers.begin(), listers.end(), own.begin(), own.end(), std::back_inserter(changes[b]));
+      one_sided += changes[b].size();  // each one-sided entry once: at its lister (dropped) or its target (added)
+    }
+    first = last;
+  }
+  mirror.clear();
+  mirror.shrink_to_fit();
+  for (std::size_t b = 0; b < n; ++b) {
+    std::vector<NodeId>& listed = nodes[b].pvs_n;
+    std::vector<NodeId>& change = changes[b];
+    if (change.empty()) continue;
+    if (symmetry == PvsnSymmetry::intersection) {
+      // In place, keeping the capacity: a smaller copy of each list would be allocated beside
+      // the memory the larger ones leave behind (1.1 GB more at Boston's size).
+      std::size_t kept = 0, c = 0;
+      for (const NodeId m : listed) {
+        while (c < change.size() && change[c] < m) ++c;
+        if (c == change.size() || change[c] != m) listed[kept++] = m;
+      }
+      listed.resize(kept);
+    } else {
+      const std::size_t before = listed.size();
+      listed.insert(listed.end(), change.begin(), change.end());
+      std::inplace_merge(listed.begin(), listed.begin() + static_cast<std::ptrdiff_t>(before), listed.end());
+    }
+    std::vector<NodeId>().swap(change);
+  }
+  return one_sided;
 }
 
 Scene navigable_region_targets(const std::vector<NavigableRegion>& regions, double eye_height) {
@@ -187,7 +183,7 @@ NavigationGraph build_navigation_graph(const Scene& scene, const std::vector<Nav
   graph.stats.samples = samples;
 
   // Symmetric PVSn (header: intersection or union), then each node itself and its neighbours.
-  graph.stats.pvs_n_one_sided = make_pvs_n_symmetric(graph.nodes, options.symmetry, threads);
+  graph.stats.pvs_n_one_sided = make_pvs_n_symmetric(graph.nodes, options.symmetry);
   for (NavigationNode& n : graph.nodes) {
     sorted_insert(n.pvs_n, n.id, graph.stats.pvs_n_added_neighbours);
     for (NodeId m : n.neighbours) sorted_insert(n.pvs_n, m, graph.stats.pvs_n_added_neighbours);
