@@ -45,9 +45,9 @@ PvsnSymmetry parse_pvs_n_symmetry(std::string_view name) {
 
 std::uint64_t make_pvs_n_symmetric(std::vector<NavigationNode>& nodes, PvsnSymmetry symmetry, std::size_t mirror_entries) {
   const std::size_t n = nodes.size();
-  std::vector<std::vector<NodeId>> changes(n);  // per node: entries to drop (intersection) or add (union), sorted
-  std::vector<std::size_t> cursor(n, 0);        // per list: its first entry not yet given to a block
-  std::vector<std::vector<NodeId>> mirror;      // per node of the block: the nodes that list it, ascending
+  std::vector<std::size_t> cursor(n, 0);    // per list: its first entry not yet given to a block
+  std::vector<std::vector<NodeId>> mirror;  // per node of the block: the nodes that list it, ascending
+  std::vector<NodeId> judged;               // scratch: a list's kept entries, or the listers it lacks
   std::uint64_t one_sided = 0;
   for (std::size_t first = 0; first < n;) {
     // A block whose own lists hold about the budget; a symmetric graph's mirror holds as many.
@@ -61,37 +61,28 @@ std::uint64_t make_pvs_n_symmetric(std::vector<NavigationNode>& nodes, PvsnSymme
       for (; k < listed.size() && listed[k] < last; ++k) mirror[listed[k] - first].push_back(static_cast<NodeId>(a));
     }
     for (std::size_t b = first; b < last; ++b) {
-      const std::vector<NodeId>& own = nodes[b].pvs_n;
+      std::vector<NodeId>& own = nodes[b].pvs_n;
       const std::vector<NodeId>& listers = mirror[b - first];
-      if (symmetry == PvsnSymmetry::intersection)
-        std::set_difference(own.begin(), own.end(), listers.begin(), listers.end(), std::back_inserter(changes[b]));
-      else
-        std::set_difference(listers.begin(), listers.end(), own.begin(), own.end(), std::back_inserter(changes[b]));
-      one_sided += changes[b].size();  // each one-sided entry once: at its lister (dropped) or its target (added)
+      judged.clear();
+      if (symmetry == PvsnSymmetry::intersection) {
+        // Copied back over the list, keeping its capacity: a smaller copy of each list would be
+        // allocated beside the memory the larger ones leave behind (1.1 GB more at Boston's size).
+        std::set_intersection(own.begin(), own.end(), listers.begin(), listers.end(), std::back_inserter(judged));
+        one_sided += own.size() - judged.size();
+        own.assign(judged.begin(), judged.end());
+      } else {
+        std::set_difference(listers.begin(), listers.end(), own.begin(), own.end(), std::back_inserter(judged));
+        one_sided += judged.size();
+        const std::size_t before = own.size();
+        own.insert(own.end(), judged.begin(), judged.end());
+        std::inplace_merge(own.begin(), own.begin() + static_cast<std::ptrdiff_t>(before), own.end());
+      }
+      // Changed at once, and no later block's judgement moves: an entry dropped here (B -> T, T
+      // not listing B) is never one T is judged on, and an entry added here (B -> A, A listing
+      // B) finds its mirror already in A's list. Only this list's place in its entries moves.
+      cursor[b] = static_cast<std::size_t>(std::lower_bound(own.begin(), own.end(), static_cast<NodeId>(last)) - own.begin());
     }
     first = last;
-  }
-  mirror.clear();
-  mirror.shrink_to_fit();
-  for (std::size_t b = 0; b < n; ++b) {
-    std::vector<NodeId>& listed = nodes[b].pvs_n;
-    std::vector<NodeId>& change = changes[b];
-    if (change.empty()) continue;
-    if (symmetry == PvsnSymmetry::intersection) {
-      // In place, keeping the capacity: a smaller copy of each list would be allocated beside
-      // the memory the larger ones leave behind (1.1 GB more at Boston's size).
-      std::size_t kept = 0, c = 0;
-      for (const NodeId m : listed) {
-        while (c < change.size() && change[c] < m) ++c;
-        if (c == change.size() || change[c] != m) listed[kept++] = m;
-      }
-      listed.resize(kept);
-    } else {
-      const std::size_t before = listed.size();
-      listed.insert(listed.end(), change.begin(), change.end());
-      std::inplace_merge(listed.begin(), listed.begin() + static_cast<std::ptrdiff_t>(before), listed.end());
-    }
-    std::vector<NodeId>().swap(change);
   }
   return one_sided;
 }

@@ -91,11 +91,11 @@ Scene navigable_region_targets(const std::vector<NavigableRegion>& regions, doub
 // build_navigation_graph does before it adds each node and its neighbours; returns how many
 // entries were one-sided (B in A's raw list, A not in B's).
 // Who lists each node (the lists' mirror) is gathered for a block of nodes at a time, holding
-// about `mirror_entries` entries, and merged with the block's own lists; the changes (the entries
-// intersection drops, or union adds) are applied once every block is judged. Each list is read
-// once in all: sorted, it gives each block its entries from where the last block stopped. At
-// Boston's size (193,326 nodes, about 690 million raw entries, 2.8 GB) a whole mirror doubled
-// the graph's peak memory; a binary search per entry in the other node's list (random reads over
+// about `mirror_entries` entries, and merged with the block's own lists, which change at once
+// (intersection drops the entries the mirror lacks, union adds the listers the list lacks).
+// Each list is read once in all: sorted, it gives each block its entries from where the last
+// stopped. At Boston's size (193,326 nodes, about 690 million raw entries, 2.8 GB) a whole mirror
+// doubled the graph's peak memory; a binary search per entry in the other node's list (random reads over
 // all of them) took 3x as long on two threads as these passes on one (a 1.6 km square of Boston,
 // 12,148 nodes). Any budget gives the same lists.
 inline constexpr std::size_t kMirrorEntries = std::size_t{1} << 25;  // 128 MB of mirror at a time
